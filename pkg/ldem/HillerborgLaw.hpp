@@ -1,0 +1,72 @@
+// The constitutive law of one bar: Hillerborg's triangle (LDEM_SPEC section 3).
+//
+//        F
+//   EA eps_p |    /\            tension: elastic up to eps_p, linear softening
+//            |   /  \           to zero force at eps_r; damage kappa = largest
+//            |  /    \          strain reached; below kappa the bar follows the
+//            | /      \         secant to the origin; compression is elastic,
+//   ---------+/--------\---eps  also after rupture (crack closure).
+//           /|  eps_p  eps_r
+//
+// Everything here is a pure function of (eps, kappa) and the bar's constants,
+// so the hot loop, the energy bookkeeping and the tests share one definition.
+#pragma once
+#include <algorithm>
+
+namespace ldem {
+
+enum class DamageState : unsigned char { Undamaged = 0, Damaged = 1, Broken = 2 };
+
+struct LimitStrain {
+    double epsR;   // limit strain actually used
+    bool clamped;  // true if eps_r < eps_p had to be raised to eps_p (snap-back)
+};
+
+// Triangle area = U_elem = A_f G_f:  1/2 EA eps_p eps_r L = A_f G_f
+//   =>  eps_r = 2 A_f G_f / (EA eps_p L).
+// eps_r < eps_p would be a snap-back: clamp to a perfectly brittle bar.
+inline LimitStrain limitStrain(double Af, double Gf, double EA, double epsP, double L) {
+    const double epsR = 2.0 * Af * Gf / (EA * epsP * L);
+    return epsR < epsP ? LimitStrain{epsP, true} : LimitStrain{epsR, false};
+}
+
+// Secant stiffness ratio s(kappa) = F_envelope(kappa) / (EA kappa), in [0, 1].
+inline double secantRatio(double kappa, double epsP, double epsR) {
+    if (kappa <= epsP) return 1.0;
+    if (kappa >= epsR) return 0.0;
+    return epsP * (epsR - kappa) / (kappa * (epsR - epsP));
+}
+
+// Axial force (tension positive) at strain eps with damage kappa >= eps
+// (call updateDamage first): F = EA eps s(kappa) in tension, EA eps in compression.
+inline double hillerborgForce(double eps, double kappa, double EA, double epsP, double epsR) {
+    return eps > 0.0 ? EA * eps * secantRatio(kappa, epsP, epsR) : EA * eps;
+}
+
+// kappa = max over history of eps (never negative).
+inline double updateDamage(double kappa, double eps) { return std::max(kappa, eps); }
+
+// Elastic energy stored at strain eps on the secant of kappa: 1/2 F (l - L).
+inline double storedEnergy(double eps, double kappa, double EA, double epsP, double epsR, double L) {
+    return 0.5 * hillerborgForce(eps, kappa, EA, epsP, epsR) * eps * L;
+}
+
+// Energy dissipated at damage kappa: work along the envelope up to kappa minus
+// the energy stored on the secant at kappa, i.e. the area of the triangle
+// (0,0)-(eps_p, sigma_p)-(kappa, sigma(kappa)):
+//   D = 1/2 L EA eps_p eps_r (kappa - eps_p) / (eps_r - eps_p),   eps_p < kappa < eps_r
+//   D = 1/2 L EA eps_p eps_r = A_f G_f,                         kappa >= eps_r
+// A clamped bar (eps_r = eps_p) loses its whole 1/2 L EA eps_p^2 at once.
+inline double dissipatedEnergy(double kappa, double EA, double epsP, double epsR, double L) {
+    if (kappa <= epsP) return 0.0;
+    const double full = 0.5 * L * EA * epsP * epsR;
+    if (kappa >= epsR) return full;
+    return full * (kappa - epsP) / (epsR - epsP);
+}
+
+inline DamageState damageState(double kappa, double epsP, double epsR) {
+    if (kappa >= epsR) return DamageState::Broken;
+    return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
+}
+
+}  // namespace ldem

@@ -1,0 +1,52 @@
+// Boundary conditions of the cube tests (LDEM_SPEC section 6): lower face
+// fixed, upper face pulled vertically by a displacement that grows smoothly
+// from rest, uniform or triangular across the face.
+//
+// Every prescribed degree of freedom follows u = weight * U(t), with U(t) the
+// displacement of the most-pulled point of the upper face:
+//   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2   for t < t_r  (velocity ramps
+//          v0 (t - t_r / 2)                        for t >= t_r  up as 1 - cos)
+// so velocity and acceleration start at zero. v0 = strain rate x height.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ldem/Lattice.hpp"
+
+namespace ldem {
+
+enum class LoadShape { Uniform, Triangular };
+LoadShape parseLoadShape(const std::string& name);  // "uniform" | "triangular"
+std::string loadShapeName(LoadShape s);
+
+struct LoadingParams {
+    LoadShape shape = LoadShape::Uniform;
+    double strainRate = 0.02;      // vertical strain rate at the most-pulled edge [1/s]
+    double rampTime = 0.0;         // smooth start duration [s]; 0 = two fundamental periods
+    bool topLateralFree = true;    // upper nodes free in x, y (else held at zero)
+    bool bottomLateralFree = false;  // lower nodes on rollers (only rigid motion pinned)
+    void validate() const;
+};
+
+struct Drive {
+    double v0 = 0;        // final velocity of the most-pulled point [m/s]
+    double rampTime = 0;  // [s]
+    double displacement(double t) const;
+};
+
+struct Constraints {
+    std::vector<std::uint8_t> mask;  // per node: bit d set if DOF d is prescribed
+    // Prescribed DOFs: u[node][dim] = weight * U(t).
+    std::vector<std::int32_t> node;
+    std::vector<std::uint8_t> dim;
+    std::vector<double> weight;
+    std::vector<std::int32_t> bottomNodes, topNodes;
+    double meanTopWeight = 0;  // mean weight of the upper face's vertical DOFs
+    double faceArea = 0;       // area of the loaded faces [m^2]
+    double height = 0;         // specimen height [m]
+};
+
+Constraints cubeTestConstraints(const Lattice& lat, const LoadingParams& p);
+
+}  // namespace ldem

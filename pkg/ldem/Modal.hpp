@@ -1,0 +1,24 @@
+// Extreme natural frequencies of the undamaged lattice under its boundary
+// conditions: omega_1 sets the damping D_f = 2 zeta omega_1, omega_max the
+// stable time step 2 / omega_max. Both come from one Lanczos run on
+// M^-1/2 K M^-1/2 restricted to the free DOFs (matrix-free: K x is one pass
+// over the bars), so no stiffness matrix is ever stored.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "ldem/Lattice.hpp"
+
+namespace ldem {
+
+struct Frequencies {
+    double omega1 = 0;    // fundamental circular frequency [rad/s]
+    double omegaMax = 0;  // largest circular frequency [rad/s]
+    int iterations = 0;
+};
+
+// mask: per node, bit d set if DOF d is prescribed (held in the modal problem).
+Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_t>& mask,
+                               int maxIterations = 6000, double tolerance = 1e-7);
+
+}  // namespace ldem

@@ -1,0 +1,37 @@
+// Random fracture energy G_f (LDEM_SPEC section 4): Weibull marginal (minimum,
+// type III, location 0) with a given mean and CV, either one independent draw
+// per bar or a Gaussian field with correlation length l_c mapped to that marginal.
+// Every draw is a pure function of (seed, bar end nodes, bar position), so the
+// specimen does not depend on the thread count or on the order bars are stored in.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "ldem/Lattice.hpp"
+
+namespace ldem {
+
+struct Weibull {
+    double shape;  // k (infinite for CV = 0: deterministic)
+    double scale;  // lambda
+    double quantile(double u) const;  // inverse CDF: lambda (-ln(1-u))^(1/k)
+    double mean() const;
+    double cv() const;
+};
+
+// Shape from CV^2 = Gamma(1+2/k)/Gamma(1+1/k)^2 - 1 (solved numerically),
+// scale from mean = lambda Gamma(1+1/k). CV = 1 gives k = 1 (exponential).
+Weibull weibullFromMeanCV(double mean, double cv);
+
+// Uniform (0,1) number that depends only on (seed, a, b): splitmix64 hashing.
+double hashedUniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
+
+// G_f for every bar of the lattice [N/m].
+//   corrLength == 0: independent draws keyed by (seed, n1, n2);
+//   corrLength > 0: g(x) = sqrt(2/N) sum_n cos(k_n.x + phi_n), k_n ~ N(0, 2/l_c^2),
+//     a Gaussian field with covariance exp(-(r/l_c)^2) (random Fourier modes),
+//     evaluated at bar midpoints and mapped by G = F_W^-1(Phi(g)).
+std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, std::uint64_t seed,
+                                        int fourierModes = 512);
+
+}  // namespace ldem

@@ -1,0 +1,110 @@
+// A cube tension test (LDEM_SPEC section 6) from specimen to split:
+// lattice + random G_f + boundary conditions + central differences + energy
+// bookkeeping. run() is the time-step loop; everything it calls per step is in
+// InternalForces (bars), Integrator (nodes) and Loading (prescribed DOFs).
+#pragma once
+#include <cstdint>
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "ldem/InternalForces.hpp"
+#include "ldem/Lattice.hpp"
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/Modal.hpp"
+
+namespace ldem {
+
+struct RunParams {
+    std::uint64_t seed = 1;      // random specimen
+    double zeta = 0.02;          // damping ratio on the fundamental mode [-]
+    double dt = 0.0;             // time step [s]; 0 = safety x stability limit
+    double dtSafety = 0.9;       // fraction of the stability limit 2/omega_max allowed
+    double finalStrain = 1e-3;   // stop at this mean strain [-]
+    double stopFraction = 0.01;  // split when stress < this fraction of the peak, after the peak
+    int recordEvery = 0;         // steps between records; 0 = about 2000 records to the final strain
+    int threads = 0;             // OpenMP threads; 0 = default
+    void validate() const;
+};
+
+struct CurvePoint {
+    std::int64_t step = 0;
+    double time = 0;          // [s]
+    double meanStrain = 0;    // mean vertical displacement of the upper nodes / height
+    double stressBottom = 0;  // sum of vertical reactions of the lower nodes / face area [Pa]
+    double stressTop = 0;     // same on the upper face [Pa]
+    double externalWork = 0, kinetic = 0, elastic = 0, fracture = 0, damping = 0;  // [J]
+    std::int64_t damaged = 0, broken = 0;
+    double balanceResidual() const { return externalWork - (kinetic + elastic + fracture + damping); }
+};
+
+struct RunSummary {
+    double peakStress = 0;       // [Pa]
+    double strainAtPeak = 0;
+    double fractureEnergy = 0;   // U_num: fracture energy dissipated at the end [J]
+    double energyBalanceError = 0;  // max |residual| / max external work over the records
+    std::int64_t steps = 0;
+    std::string stopReason;      // "split" or "final_strain"
+};
+
+// Thrown when the integration blows up (NaN, or energy created from nothing).
+class InstabilityError : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+class Simulation {
+public:
+    Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
+               const RunParams& run);
+
+    // The time-step loop: records every recordEvery steps, calls observer (which may
+    // return false to stop), stops on split or final strain.
+    RunSummary run(const std::function<bool(const CurvePoint&)>& observer = {});
+
+    // One step: forces at x(n), then x(n+1). measure() in between records state n.
+    void computeForces();
+    CurvePoint measure() const;
+    void advance();
+    void step() { computeForces(), advance(); }
+
+    const Lattice& lattice() const { return lat_; }
+    const Constraints& constraints() const { return con_; }
+    const BarState& bars() const { return bars_; }
+    const Field3& displacements() const { return u_; }
+    const std::vector<double>& fractureEnergyField() const { return gf_; }
+    const Material& material() const { return mat_; }
+    const LoadingParams& loading() const { return load_; }
+    const RunParams& runParams() const { return run_; }
+    const Frequencies& frequencies() const { return freq_; }
+    double dt() const { return dt_; }
+    double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
+    double dampingCoefficient() const { return Df_; }
+    double rampTime() const { return drive_.rampTime; }
+    std::int64_t clampedBars() const { return clamped_; }
+    std::int64_t stepCount() const { return step_; }
+    int recordEvery() const { return recordEvery_; }
+    double minFractureEnergy() const { return mat_.GfMean * con_.faceArea; }  // U_min
+
+private:
+    double meanStrainAt(double t) const { return drive_.displacement(t) * con_.meanTopWeight / con_.height; }
+
+    Material mat_;
+    LoadingParams load_;
+    RunParams run_;
+    Lattice lat_;
+    Constraints con_;
+    Frequencies freq_;
+    Drive drive_;
+    std::vector<double> gf_;
+    BarState bars_;
+    Field3 u_, v_, f_;
+    double dt_ = 0, Df_ = 0, time_ = 0;
+    double externalWork_ = 0, dampingWork_ = 0;
+    std::int64_t step_ = 0, clamped_ = 0;
+    int recordEvery_ = 1;
+};
+
+}  // namespace ldem

@@ -1,0 +1,211 @@
+// Python bindings of the C++ core: ldem._core. Thin: parameters, the
+// Simulation with its time-step loop (run without the GIL, calling back into
+// Python once per record), and numpy views of the lattice and its state.
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "ldem/CurveCsv.hpp"
+#include "ldem/HillerborgLaw.hpp"
+#include "ldem/Integrator.hpp"
+#include "ldem/Lattice.hpp"
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/Modal.hpp"
+#include "ldem/Parallel.hpp"
+#include "ldem/RandomField.hpp"
+#include "ldem/Simulation.hpp"
+
+namespace py = pybind11;
+using namespace ldem;
+
+namespace {
+template <class T>
+py::array_t<T> toNumpy(const std::vector<T>& v) {
+    return py::array_t<T>(py::ssize_t(v.size()), v.data());
+}
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+    m.doc() = "ldem C++ core: truss-like lattice DEM (Riera-Iturrioz) for brittle fracture";
+
+    py::register_exception<InstabilityError>(m, "InstabilityError", PyExc_RuntimeError);
+
+    py::class_<Material>(m, "Material")
+        .def(py::init<>())
+        .def_readwrite("E", &Material::E)
+        .def_readwrite("nu", &Material::nu)
+        .def_readwrite("rho", &Material::rho)
+        .def_readwrite("Gf_mean", &Material::GfMean)
+        .def_readwrite("Gf_cv", &Material::GfCV)
+        .def_readwrite("corr_length", &Material::corrLength)
+        .def_readwrite("eps_p", &Material::epsP)
+        .def_readwrite("c_a", &Material::ca)
+        .def("validate", &Material::validate);
+
+    py::class_<LoadingParams>(m, "LoadingParams")
+        .def(py::init<>())
+        .def_property(
+            "shape", [](const LoadingParams& p) { return loadShapeName(p.shape); },
+            [](LoadingParams& p, const std::string& s) { p.shape = parseLoadShape(s); })
+        .def_readwrite("strain_rate", &LoadingParams::strainRate)
+        .def_readwrite("ramp_time", &LoadingParams::rampTime)
+        .def_readwrite("top_lateral_free", &LoadingParams::topLateralFree)
+        .def_readwrite("bottom_lateral_free", &LoadingParams::bottomLateralFree);
+
+    py::class_<RunParams>(m, "RunParams")
+        .def(py::init<>())
+        .def_readwrite("seed", &RunParams::seed)
+        .def_readwrite("zeta", &RunParams::zeta)
+        .def_readwrite("dt", &RunParams::dt)
+        .def_readwrite("dt_safety", &RunParams::dtSafety)
+        .def_readwrite("final_strain", &RunParams::finalStrain)
+        .def_readwrite("stop_fraction", &RunParams::stopFraction)
+        .def_readwrite("record_every", &RunParams::recordEvery)
+        .def_readwrite("threads", &RunParams::threads);
+
+    py::class_<CurvePoint>(m, "CurvePoint")
+        .def_readonly("step", &CurvePoint::step)
+        .def_readonly("time", &CurvePoint::time)
+        .def_readonly("mean_strain", &CurvePoint::meanStrain)
+        .def_readonly("stress_bottom", &CurvePoint::stressBottom)
+        .def_readonly("stress_top", &CurvePoint::stressTop)
+        .def_readonly("external_work", &CurvePoint::externalWork)
+        .def_readonly("kinetic", &CurvePoint::kinetic)
+        .def_readonly("elastic", &CurvePoint::elastic)
+        .def_readonly("fracture", &CurvePoint::fracture)
+        .def_readonly("damping", &CurvePoint::damping)
+        .def_readonly("damaged", &CurvePoint::damaged)
+        .def_readonly("broken", &CurvePoint::broken);
+
+    py::class_<RunSummary>(m, "RunSummary")
+        .def_readonly("peak_stress", &RunSummary::peakStress)
+        .def_readonly("strain_at_peak", &RunSummary::strainAtPeak)
+        .def_readonly("fracture_energy", &RunSummary::fractureEnergy)
+        .def_readonly("energy_balance_error", &RunSummary::energyBalanceError)
+        .def_readonly("steps", &RunSummary::steps)
+        .def_readonly("stop_reason", &RunSummary::stopReason);
+
+    py::class_<CurveCsvWriter>(m, "CurveCsvWriter")
+        .def(py::init<const std::string&>())
+        .def("write", &CurveCsvWriter::write)
+        .def_property_readonly_static("header", [](py::object) { return std::string(CurveCsvWriter::header()); });
+
+    py::class_<Lattice>(m, "Lattice")
+        .def_readonly("nx", &Lattice::nx)
+        .def_readonly("ny", &Lattice::ny)
+        .def_readonly("nz", &Lattice::nz)
+        .def_readonly("L0", &Lattice::L0)
+        .def_property_readonly("n_nodes", &Lattice::numNodes)
+        .def_property_readonly("n_bars", &Lattice::numBars)
+        .def_property_readonly("x0", [](const Lattice& l) { return toNumpy(l.x0); })
+        .def_property_readonly("y0", [](const Lattice& l) { return toNumpy(l.y0); })
+        .def_property_readonly("z0", [](const Lattice& l) { return toNumpy(l.z0); })
+        .def_property_readonly("mass", [](const Lattice& l) { return toNumpy(l.mass); })
+        .def_property_readonly("n1", [](const Lattice& l) { return toNumpy(l.n1); })
+        .def_property_readonly("n2", [](const Lattice& l) { return toNumpy(l.n2); })
+        .def_property_readonly("share", [](const Lattice& l) { return toNumpy(l.share); })
+        .def_property_readonly("kind",
+                               [](const Lattice& l) {  // 0 edge, 1 centre-centre, 2 diagonal
+                                   std::vector<std::uint8_t> k(l.numBars());
+                                   for (std::int64_t b = 0; b < l.numBars(); ++b)
+                                       k[b] = std::uint8_t(l.families[l.family[b]].kind);
+                                   return toNumpy(k);
+                               })
+        .def_property_readonly("EA",
+                               [](const Lattice& l) {
+                                   std::vector<double> v(l.numBars());
+                                   for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barEA(b);
+                                   return toNumpy(v);
+                               })
+        .def_property_readonly("Af",
+                               [](const Lattice& l) {
+                                   std::vector<double> v(l.numBars());
+                                   for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barAf(b);
+                                   return toNumpy(v);
+                               })
+        .def_property_readonly("length", [](const Lattice& l) {
+            std::vector<double> v(l.numBars());
+            for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barLength(b);
+            return toNumpy(v);
+        });
+    m.def("build_cubic_lattice", &buildCubicLattice, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"),
+          py::arg("material"));
+    m.def("expected_node_count", &expectedNodeCount);
+    m.def("expected_bar_count", &expectedBarCount);
+
+    // The law, for tests and for anyone who wants to plot it.
+    m.def("hillerborg_force", &hillerborgForce, py::arg("eps"), py::arg("kappa"), py::arg("EA"), py::arg("eps_p"),
+          py::arg("eps_r"));
+    m.def("dissipated_energy", &dissipatedEnergy, py::arg("kappa"), py::arg("EA"), py::arg("eps_p"),
+          py::arg("eps_r"), py::arg("L"));
+    m.def("limit_strain", [](double Af, double Gf, double EA, double epsP, double L) {
+        const LimitStrain ls = limitStrain(Af, Gf, EA, epsP, L);
+        return py::make_tuple(ls.epsR, ls.clamped);
+    });
+    m.def("nayfeh_delta", &nayfehDelta);
+    m.def("nayfeh_phi", &nayfehPhi);
+    m.def("weibull_from_mean_cv", [](double mean, double cv) {
+        const Weibull w = weibullFromMeanCV(mean, cv);
+        return py::make_tuple(w.shape, w.scale);
+    });
+    m.def("max_threads", &maxThreads);
+
+    py::class_<Simulation>(m, "Simulation")
+        .def(py::init([](int nx, int ny, int nz, double L0, const Material& mat, const LoadingParams& load,
+                         const RunParams& run) {
+                 py::gil_scoped_release release;  // the modal analysis can take seconds
+                 return std::make_unique<Simulation>(nx, ny, nz, L0, mat, load, run);
+             }),
+             py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("material"), py::arg("loading"),
+             py::arg("run"))
+        .def(
+            "run",
+            [](Simulation& s, py::object callback) {
+                std::function<bool(const CurvePoint&)> observer;
+                if (!callback.is_none())
+                    observer = [&callback](const CurvePoint& p) {
+                        py::gil_scoped_acquire gil;
+                        py::object r = callback(p);
+                        return r.is_none() || r.cast<bool>();
+                    };
+                py::gil_scoped_release release;
+                return s.run(observer);
+            },
+            py::arg("callback") = py::none(),
+            "Runs the time-step loop; callback(point) is called at every record and may return False to stop.")
+        .def("step", &Simulation::step)
+        .def("compute_forces", &Simulation::computeForces)
+        .def("advance", &Simulation::advance)
+        .def("measure", &Simulation::measure)
+        .def_property_readonly("lattice", &Simulation::lattice, py::return_value_policy::reference_internal)
+        .def_property_readonly("dt", &Simulation::dt)
+        .def_property_readonly("dt_limit", &Simulation::stableTimeStepLimit)
+        .def_property_readonly("omega1", [](const Simulation& s) { return s.frequencies().omega1; })
+        .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })
+        .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
+        .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
+        .def_property_readonly("ramp_time", &Simulation::rampTime)
+        .def_property_readonly("clamped_bars", &Simulation::clampedBars)
+        .def_property_readonly("steps", &Simulation::stepCount)
+        .def_property_readonly("record_every", &Simulation::recordEvery)
+        .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)
+        .def_property_readonly("face_area", [](const Simulation& s) { return s.constraints().faceArea; })
+        .def_property_readonly("height", [](const Simulation& s) { return s.constraints().height; })
+        .def_property_readonly("top_nodes", [](const Simulation& s) { return toNumpy(s.constraints().topNodes); })
+        .def_property_readonly("bottom_nodes",
+                               [](const Simulation& s) { return toNumpy(s.constraints().bottomNodes); })
+        .def_property_readonly("fracture_energy_field", [](const Simulation& s) { return toNumpy(s.fractureEnergyField()); })
+        .def_property_readonly("kappa", [](const Simulation& s) { return toNumpy(s.bars().kappa); })
+        .def_property_readonly("eps_r", [](const Simulation& s) { return toNumpy(s.bars().epsR); })
+        .def_property_readonly("eps_p", [](const Simulation& s) { return s.bars().epsP; })
+        .def_property_readonly("bar_strain", [](const Simulation& s) { return toNumpy(barStrains(s.lattice(), s.displacements())); })
+        .def_property_readonly("displacement", [](const Simulation& s) {
+            const Field3& u = s.displacements();
+            py::array_t<double> a({py::ssize_t(u.x.size()), py::ssize_t(3)});
+            auto r = a.mutable_unchecked<2>();
+            for (py::ssize_t i = 0; i < py::ssize_t(u.x.size()); ++i) r(i, 0) = u.x[i], r(i, 1) = u.y[i], r(i, 2) = u.z[i];
+            return a;
+        });
+}
