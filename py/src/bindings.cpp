@@ -176,6 +176,8 @@ PYBIND11_MODULE(_core, m) {
             py::arg("callback") = py::none(),
             "Runs the time-step loop; callback(point) is called at every record and may return False to stop.")
         .def("step", &Simulation::step)
+        .def("force_time_step", &Simulation::forceTimeStep,
+             "Sets dt WITHOUT the stability check (for tests of the instability detector).")
         .def("compute_forces", &Simulation::computeForces)
         .def("advance", &Simulation::advance)
         .def("measure", &Simulation::measure)

@@ -1,0 +1,84 @@
+"""Pictures of a run: stress-strain curve, energy budget, crack slice."""
+from __future__ import annotations
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib.collections import LineCollection  # noqa: E402
+from matplotlib.lines import Line2D  # noqa: E402
+
+from .output import BROKEN, DAMAGED, STATE_COLOURS, STATE_NAMES, UNDAMAGED, damage_states  # noqa: E402
+
+
+def curve_figure(result, path: str) -> None:
+    c, s = result.curve, result.summary
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=1.5, label="lower face (reaction)")
+    ax.plot(c["mean_strain"] * 1e4, c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="upper face")
+    if "peak_stress_MPa" in s:
+        ax.plot(s["strain_at_peak"] * 1e4, s["peak_stress_MPa"], "ko", ms=5,
+                label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
+    t = result.test
+    ax.set(xlabel="mean strain [1e-4]", ylabel="normal stress [MPa]",
+           title=f"{t.size:g} m cube, {t.load} loading, seed {t.seed}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def energy_figure(result, path: str) -> None:
+    c = result.curve
+    x = c["mean_strain"] * 1e4
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    ax.plot(x, c["external_work_J"], "k", lw=2, label="external work")
+    ax.stackplot(x, c["elastic_J"], c["fracture_J"], c["damping_J"], c["kinetic_J"],
+                 labels=["elastic", "fracture", "damping", "kinetic"], alpha=0.6)
+    ax.set(xlabel="mean strain [1e-4]", ylabel="energy [J]",
+           title=f"energy budget (balance error {result.summary.get('energy_balance_error', float('nan')):.2e})")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def central_slice(sim, axis: int = 1):
+    """Bars whose both ends lie within L0/2 of the mid-plane normal to axis (y by
+    default), projected on the two other axes: (segments, damage states)."""
+    lat = sim.lattice
+    x = np.column_stack([lat.x0, lat.y0, lat.z0])
+    mid = 0.5 * (x[:, axis].min() + x[:, axis].max())
+    near = np.abs(x[:, axis] - mid) <= 0.5 * lat.L0 + 1e-12
+    keep = near[lat.n1] & near[lat.n2]
+    plane = [a for a in range(3) if a != axis]
+    seg = np.stack([x[lat.n1[keep]][:, plane], x[lat.n2[keep]][:, plane]], axis=1)
+    return seg, damage_states(sim.kappa[keep], sim.eps_p, sim.eps_r[keep])
+
+
+def draw_slice(ax, sim, axis: int = 1) -> dict:
+    seg, state = central_slice(sim, axis)
+    counts = {}
+    for st, lw in ((UNDAMAGED, 0.5), (DAMAGED, 1.2), (BROKEN, 1.8)):  # broken drawn on top
+        sel = state == st
+        counts[st] = int(sel.sum())
+        ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw))
+    ax.set_aspect("equal")
+    ax.autoscale()
+    ax.set_xticks([]), ax.set_yticks([])
+    return counts
+
+
+def crack_figure(sim, path: str, title: str = "") -> None:
+    fig, ax = plt.subplots(figsize=(5.6, 6.0))
+    counts = draw_slice(ax, sim)
+    handles = [Line2D([], [], color=STATE_COLOURS[s], lw=2, label=f"{STATE_NAMES[s]} ({counts[s]})")
+               for s in (UNDAMAGED, DAMAGED, BROKEN)]
+    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=3, fontsize=8, frameon=False)
+    ax.set_title(title or "central slice", fontsize=9)
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)

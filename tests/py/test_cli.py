@@ -1,0 +1,82 @@
+"""The command line: bad input is one line and exit code 2; a run writes every file."""
+import csv
+import json
+import os
+
+import numpy as np
+import pytest
+
+from conftest import FAST
+
+BAD_INPUT = [
+    (["--size", "-0.12"], "cube size must be positive"),
+    (["--size", "0.13"], "not a multiple of L0"),
+    (["--nu", "0.5"], "nu must be in [0, 0.5)"),
+    (["--nu", "0.7"], "nu must be in [0, 0.5)"),
+    (["--Gf-cv", "-0.1"], "CV of G_f must be >= 0"),
+    (["--load", "shear"], "invalid choice"),
+    (["--E", "abc"], "invalid float value"),
+    (["--L0", "0"], "L0 must be positive"),
+    (["--dt", "1"], "stability limit"),
+    (["--strain-rate", "-1"], "strain rate must be positive"),
+]
+
+
+@pytest.mark.parametrize("args,message", BAD_INPUT)
+def test_bad_input_is_one_line_and_exit_2(cli, tmp_path, args, message):
+    r = cli("cube", "--out", str(tmp_path / "o"), "--no-progress", *args)
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1, r.stderr
+    assert message in lines[0]
+    assert "Traceback" not in r.stderr
+
+
+def test_unwritable_output_folder(cli, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("not a folder")
+    r = cli("cube", "--out", str(blocker / "sub"), "--no-progress")
+    assert r.returncode == 2
+    assert "cannot write to output folder" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_help_documents_units_and_defaults(cli):
+    r = cli("cube", "--help")
+    assert r.returncode == 0
+    for text in ("--size", "[m]", "--Gf-cv", "--corr-length", "--eps-p", "--c-a", "--zeta", "--strain-rate",
+                 "[1/s]", "--final-strain", "--top-lateral", "--threads", "default: 0.12", "default: 35000000000.0"):
+        assert text in r.stdout, text
+
+
+def test_cube_run_writes_all_outputs(cli, tmp_path):
+    out = tmp_path / "cube"
+    r = cli("cube", "--out", str(out), "--no-progress", "--size", str(FAST["size"]),
+            "--strain-rate", str(FAST["strain_rate"]), "--final-strain", str(FAST["final_strain"]), "--seed", "2")
+    assert r.returncode == 0, r.stderr
+    assert "peak stress" in r.stdout
+    for name in ("curve.csv", "summary.json", "curve.png", "energies.png", "cracks.png", "bars.vtu"):
+        assert (out / name).stat().st_size > 0, name
+
+    with open(out / "curve.csv") as f:
+        header = next(csv.reader(f))
+    for col in ("time_s", "mean_strain", "stress_MPa", "stress_top_MPa", "external_work_J", "kinetic_J",
+                "elastic_J", "fracture_J", "damping_J", "damaged_bars", "broken_bars"):
+        assert col in header
+    curve = np.genfromtxt(out / "curve.csv", delimiter=",", names=True)
+
+    s = json.loads((out / "summary.json").read_text())
+    for key in ("peak_stress_MPa", "strain_at_peak", "fracture_energy_J", "min_fracture_energy_J",
+                "energy_balance_error", "clamped_bars", "n_nodes", "n_bars", "steps", "dt_s", "wall_s"):
+        assert key in s, key
+    assert s["parameters"]["seed"] == 2 and s["parameters"]["size"] == FAST["size"]
+    # The summary's peak is the curve's maximum; U_min = E[G_f] x face area.
+    assert s["peak_stress_MPa"] == pytest.approx(curve["stress_MPa"].max(), rel=1e-8)
+    assert s["min_fracture_energy_J"] == pytest.approx(100.0 * 0.08 ** 2)
+    assert s["n_nodes"] == 5 ** 3 + 4 ** 3
+    assert s["energy_balance_error"] < 0.01
+
+    import meshio
+    mesh = meshio.read(out / "bars.vtu")
+    assert len(mesh.cells[0].data) == s["n_bars"]
+    states = mesh.cell_data["damage_state"][0]
+    assert set(np.unique(states)) <= {0, 1, 2} and (states == 2).any()
