@@ -1,6 +1,5 @@
 #include "ldem/Modal.hpp"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <stdexcept>
 
@@ -17,14 +16,57 @@ double dot(const Field3& a, const Field3& b) {
     })[0];
 }
 
-// Smallest and largest eigenvalues of the tridiagonal Lanczos matrix.
-std::pair<double, double> ritzExtremes(const std::vector<double>& alpha, const std::vector<double>& beta) {
-    const Eigen::Index k = Eigen::Index(alpha.size());
-    Eigen::VectorXd diag = Eigen::Map<const Eigen::VectorXd>(alpha.data(), k);
-    Eigen::VectorXd sub = Eigen::Map<const Eigen::VectorXd>(beta.data(), k - 1);
-    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es;
-    es.computeFromTridiagonal(diag, sub, Eigen::EigenvaluesOnly);
-    return {es.eigenvalues()(0), es.eigenvalues()(k - 1)};
+// Number of eigenvalues below x of the symmetric tridiagonal matrix with
+// diagonal a and off-diagonal b (Sturm sequence of the LDL^T pivots).
+int eigenvaluesBelow(const std::vector<double>& a, const std::vector<double>& b, double x) {
+    int count = 0;
+    double d = 1.0;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        d = a[i] - x - (i > 0 ? b[i - 1] * b[i - 1] / d : 0.0);
+        if (d == 0.0) d = -1e-300;
+        count += d < 0;
+    }
+    return count;
+}
+
+// The j-th smallest eigenvalue (j = 0, 1, ...) by bisection between Gershgorin bounds.
+double tridiagonalEigenvalue(const std::vector<double>& a, const std::vector<double>& b, int j) {
+    double lo = a[0], hi = a[0];
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        const double r = (i > 0 ? std::abs(b[i - 1]) : 0.0) + (i + 1 < a.size() ? std::abs(b[i]) : 0.0);
+        lo = std::min(lo, a[i] - r), hi = std::max(hi, a[i] + r);
+    }
+    for (int it = 0; it < 200 && hi - lo > 1e-15 * std::max(std::abs(lo), std::abs(hi)); ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (eigenvaluesBelow(a, b, mid) > j ? hi : lo) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+// Last component of the unit eigenvector of the tridiagonal matrix for the
+// eigenvalue theta, by two steps of inverse iteration (Thomas algorithm).
+double lastEigenvectorComponent(const std::vector<double>& a, const std::vector<double>& b, double theta) {
+    const std::size_t k = a.size();
+    const double shift = theta + 1e-10 * std::abs(theta);  // keeps T - shift I invertible
+    std::vector<double> x(k, 1.0), c(k), d(k);
+    for (int step = 0; step < 2; ++step) {
+        // Solve (T - shift I) y = x, forward elimination then back substitution.
+        double piv = a[0] - shift;
+        c[0] = k > 1 ? b[0] / piv : 0.0, d[0] = x[0] / piv;
+        for (std::size_t i = 1; i < k; ++i) {
+            piv = a[i] - shift - b[i - 1] * c[i - 1];
+            if (piv == 0.0) piv = 1e-300;
+            c[i] = i + 1 < k ? b[i] / piv : 0.0;
+            d[i] = (x[i] - b[i - 1] * d[i - 1]) / piv;
+        }
+        x[k - 1] = d[k - 1];
+        for (std::size_t i = k - 1; i-- > 0;) x[i] = d[i] - c[i] * x[i + 1];
+        double norm = 0;
+        for (double v : x) norm += v * v;
+        norm = std::sqrt(norm);
+        for (double& v : x) v /= norm;
+    }
+    return x[k - 1];
 }
 }  // namespace
 
@@ -53,7 +95,7 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
     axpy(q, 1.0 / q0, q, 0.0);
 
     std::vector<double> alpha, beta;
-    double prevMin = 0, prevMax = 0, betaPrev = 0;
+    double betaPrev = 0;
     int nextCheck = 10;
     Frequencies out;
     for (int it = 1; it <= maxIterations; ++it) {
@@ -70,15 +112,18 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         axpy(w, 1.0, q, -a);
         const double b = std::sqrt(dot(w, w));
         alpha.push_back(a);
-        const bool exhausted = b <= 1e-12 * std::abs(a);  // Krylov space exhausted: exact
+        // Krylov space exhausted (tiny lattices): the Ritz values are exact.
+        const bool exhausted = b <= 1e-12 * std::abs(a);
         if (it == nextCheck || exhausted || it == maxIterations) {
-            const auto [lmin, lmax] = ritzExtremes(alpha, beta);
-            const bool converged = std::abs(lmin - prevMin) <= tolerance * lmin &&
-                                   std::abs(lmax - prevMax) <= tolerance * lmax;
-            prevMin = lmin, prevMax = lmax;
+            // A Ritz pair (theta, s) has residual |beta_k s_k| and an eigenvalue
+            // lies within it: converged when both extremes are that close.
+            const double lmin = tridiagonalEigenvalue(alpha, beta, 0);
+            const double lmax = tridiagonalEigenvalue(alpha, beta, int(alpha.size()) - 1);
+            const double rmin = std::abs(b * lastEigenvectorComponent(alpha, beta, lmin));
+            const double rmax = std::abs(b * lastEigenvectorComponent(alpha, beta, lmax));
             out = {std::sqrt(std::max(lmin, 0.0)), std::sqrt(lmax), it};
-            if (converged || exhausted) return out;
-            nextCheck = it + std::max(10, it / 8);
+            if (exhausted || (rmin <= tolerance * lmin && rmax <= tolerance * lmax)) return out;
+            nextCheck = it + std::max(10, it / 10);
         }
         beta.push_back(b);
         std::swap(qPrev, q);  // q_{j-1} <- q_j

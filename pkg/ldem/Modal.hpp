@@ -18,7 +18,8 @@ struct Frequencies {
 };
 
 // mask: per node, bit d set if DOF d is prescribed (held in the modal problem).
+// tolerance: Lanczos residual / eigenvalue; the frequency error is at most half of it.
 Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_t>& mask,
-                               int maxIterations = 6000, double tolerance = 1e-7);
+                               int maxIterations = 20000, double tolerance = 1e-4);
 
 }  // namespace ldem
