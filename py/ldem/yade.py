@@ -1,0 +1,436 @@
+"""Run an ldem lattice in YADE, with YADE's own integrator and a native YADE
+law, as an independent check of the ldem engine (issue 5).
+
+Use inside YADE (``yade-double -n -x script.py``)::
+
+    import ldem.yade
+    from ldem import _core
+    lp = _core.LoadingParams(); rp = _core.RunParams(); rp.zeta = 0
+    sim = _core.Simulation(6, 6, 6, 0.02, _core.Material(), lp, rp)
+    spec = ldem.yade.CubeSpecimen(sim, lp)     # fills YADE's O
+    result = spec.run()                          # dict: peak_stress, strain_at_peak, curve...
+
+Importing this module does not import YADE; the functions that need it import
+it when they are called, so the module can be imported (and its pure helpers
+used) from any Python.
+
+How one ldem bar becomes one YADE interaction
+---------------------------------------------
+Node = sphere (radius ``radius_factor * L0``; the radius plays no role in the
+forces, see below), ``blockedDOFs`` with the rotations always blocked, mass set
+to the lattice's lumped mass. Bar = one interaction made explicitly with
+``utils.createInteraction`` (there is no collider, so no other interaction ever
+appears), geometry ``Ig2_Sphere_Sphere_ScGeom``, physics
+``Ip2_CpmMat_CpmMat_CpmPhys``, law ``Law2_ScGeom_CpmPhys_Cpm`` (the concrete
+particle model, "Cpm"). Debian's YADE is built without the closed
+``brefcom-mm.hh`` full model, so the law runs its "simplified public model"
+(pkg/dem/ConcretePM.cpp), which with our settings is exactly::
+
+    epsN   = (refPD - penetrationDepth) / refLength           = (l - L) / L
+             (refPD = r1 + r2 - L, penetrationDepth = r1 + r2 - l)
+    kappaD = max(kappaD, max(epsN, 0))                        (equivStrainShearContrib = 0)
+    omega  = 0                                    if kappaD < epsCrackOnset
+           = (1 - e0/kappaD) / (1 - e0/ef)        otherwise   (damLaw = 0: linear softening)
+    sigmaN = (1 - omega) E epsN  if epsN > 0,   E epsN  if epsN <= 0
+    Fn     = sigmaN * crossSection                (along the current centre line)
+    shear  = G (epsT - epsTPl) * crossSection = 0 (G = 0: no shear stiffness)
+
+With e0 = epsCrackOnset = eps_p, ef = epsFracture = eps_r, E crossSection = EA:
+
+    1 - omega = e0 (ef - kappa) / (kappa (ef - e0))
+
+which is ldem's secant ratio s(kappa) = eps_p (eps_r - kappa) / (kappa (eps_r - eps_p)),
+so F = EA eps s(kappa) in tension and EA eps in compression: Hillerborg's
+triangle with secant unloading/reloading, identical term by term. Rate
+effects (dmgTau, plTau, dmgRateExp, plRateExp) and the yield surfaces exist only
+in the closed full model; compressive plasticity is off (Law2.epsSoft = 1 >= 0),
+isoPrestress = 0, neverDamage = False.
+
+Per-bar parameters: Ip2 copies the material's values into every CpmPhys, and the
+law's first call on an interaction ("fresh") sets crossSection = pi min(r)^2,
+refLength = |x2 - x1|, refPD, kn, ks and epsFracture = epsCrackOnset *
+relDuctility. So each interaction gets E = EA / (pi r^2), G = 0, epsCrackOnset =
+eps_p, relDuctility = eps_r / eps_p before step 0, and after step 0 (all strains
+are still exactly zero then) ``finish_first_step`` overwrites crossSection = 1,
+E = EA, epsFracture = eps_r, refLength = L, refPD = r1 + r2 - L, kn = EA / L
+with ldem's exact numbers.
+
+What YADE cannot express natively, and the guard that fixes it
+--------------------------------------------------------------
+The Cpm law deletes an interaction as soon as it is in tension with omega >
+omegaThreshold (<= 1), or not cohesive; with damLaw = 0, omega > 1 beyond
+epsFracture (and the force would change sign if it were kept), and for a
+clamped, perfectly brittle bar (eps_r = eps_p) omega is 0/0 = NaN at
+kappa = eps_p (YADE's check then fails: "Verification `!math::isnan(sigmaN)'
+failed!", terminate, SIGABRT) and +inf beyond. So a ruptured bar disappears
+and can never push again: no crack closure. ldem's bar stays and is elastic in
+compression after rupture. ``RuptureGuard`` keeps YADE exact: before every
+force evaluation (a PyRunner placed before the InteractionLoop) it computes
+every bar's strain from the positions the law is about to use, with the same
+floating-point operations as Ig2_Sphere_Sphere_ScGeom and the law, so it is
+bit-identical to the law's epsN::
+
+    d = x2 - x1;  norm = sqrt(dx dx + (dy dy + dz dz));  pd = (r1 + r2) - norm
+    epsN = (refPD - pd) / refLength
+
+and a bar whose strain reaches eps_r (epsN >= epsFracture, i.e. kappa >= eps_r,
+where ldem's force is zero) gets epsCrackOnset = 1e-300 before the law sees it.
+A clamped bar (eps_r = eps_p) is given epsCrackOnset = epsFracture =
+nextafter(eps_p, +inf) = eps_p+ : ldem's bar is elastic up to kappa = eps_p
+inclusive and broken for any kappa > eps_p, i.e. kappa >= eps_p+, so the law
+(elastic for kappa < epsCrackOnset) never meets its 0/0.
+Then omega = (1 - 1e-300/kappa) / (1 - 1e-300/eps_r) == 1.0 exactly in double
+precision, so F = 0 in tension, EA eps in compression, omega never exceeds the
+threshold and the interaction is never deleted. ``RuptureGuard.verify()``
+compares its strains with the law's epsN (they must be equal) and
+``GUARD_MARGIN`` (default 0) can switch bars a relative margin before eps_r if
+a platform ever rounds differently.
+
+Integration and damping
+-----------------------
+``NewtonIntegrator``: v += dt F/m; x += dt v (leapfrog = ldem's central
+differences with D_f = 0, same dt). YADE's ``damping`` is *non-viscous
+(Cundall) damping*: a_i <- a_i (1 - lambda sign(a_i (v_i + a_i dt/2))) per
+component, a force-proportional, frequency-independent friction-like term. It is
+*not* ldem's mass-proportional viscous damping C = D_f M
+(v(n+1/2) = [(1 - D_f dt/2) v(n-1/2) + dt F/m] / (1 + D_f dt/2)); there is no
+native YADE equivalent, so the cross-check runs both engines undamped
+(ldem RunParams.zeta = 0, NewtonIntegrator.damping = 0); ``damping`` is
+offered here only to show YADE's own behaviour.
+
+Boundary conditions
+-------------------
+Those of ldem's cubeTestConstraints (pkg/ldem/Loading.cpp), rebuilt from the
+lattice: lower face z held (x, y held too, or on rollers with x, y pinned at
+corner (0,0) and y at (nx,0) if bottom_lateral_free); upper face z prescribed,
+u_z = w U(t) with w = 1 (uniform) or x0/width (triangular), x, y free unless
+top_lateral_free is False. U(t) is ldem's Drive (smooth 1 - cos start over
+ramp_time, then v0 = strain_rate * height). Each step, before the forces,
+the drive sets the upper nodes to z0 + w U(t_n) and their velocity to
+w (U(t_n+1) - U(t_n))/dt (YADE moves blocked DOFs with their velocity).
+"""
+import math
+
+import numpy as np
+
+PI = 3.14159265358979323846
+
+# epsCrackOnset given to a ruptured bar: omega = 1 - 1e-300/kappa == 1.0 exactly.
+BROKEN_ONSET = 1e-300
+# A bar is switched to "ruptured" once its strain reaches eps_r (1 - GUARD_MARGIN);
+# 0 because the guard's strain is bit-identical to the law's (see RuptureGuard).
+GUARD_MARGIN = 0.0
+
+
+def drive_displacement(t, v0, ramp_time):
+    """ldem's Drive::displacement (pkg/ldem/Loading.cpp): smooth start, then v0 t."""
+    if t <= 0:
+        return 0.0
+    if t < ramp_time:
+        return 0.5 * v0 * (t - ramp_time / PI * math.sin(PI * t / ramp_time))
+    return v0 * (t - 0.5 * ramp_time)
+
+
+def hillerborg_force(eps, kappa, EA, eps_p, eps_r):
+    """Reference law in pure Python (same as ldem's hillerborgForce)."""
+    if eps <= 0:
+        return EA * eps
+    if kappa <= eps_p:
+        s = 1.0
+    elif kappa >= eps_r:
+        s = 0.0
+    else:
+        s = eps_p * (eps_r - kappa) / (kappa * (eps_r - eps_p))
+    return EA * eps * s
+
+
+def _yade():
+    """YADE's classes (only importable inside YADE), imported when first needed."""
+    from yade import (CpmMat, ForceResetter, Ig2_Sphere_Sphere_ScGeom, InteractionLoop,
+                      Ip2_CpmMat_CpmMat_CpmPhys, Law2_ScGeom_CpmPhys_Cpm, NewtonIntegrator, O, PyRunner,
+                      Vector3, utils)
+    return dict(CpmMat=CpmMat, ForceResetter=ForceResetter, Ig2=Ig2_Sphere_Sphere_ScGeom,
+                InteractionLoop=InteractionLoop, Ip2=Ip2_CpmMat_CpmMat_CpmPhys, Law2=Law2_ScGeom_CpmPhys_Cpm,
+                NewtonIntegrator=NewtonIntegrator, O=O, PyRunner=PyRunner, Vector3=Vector3, utils=utils)
+
+
+def _register(name, obj):
+    """PyRunner commands run in __main__'s namespace: make obj reachable there."""
+    import __main__
+    setattr(__main__, name, obj)
+    return name
+
+
+def bar_material(eps_p):
+    """One CpmMat for all nodes; everything per bar is set on the interactions."""
+    y = _yade()
+    return y["CpmMat"](
+        young=1.0,  # replaced per interaction by E = EA / crossSection
+        poisson=0.0,  # G = young * poisson = 0: no shear stiffness
+        frictionAngle=0.0, sigmaT=1.0,  # shear yield: irrelevant with G = 0, must not be NaN
+        epsCrackOnset=eps_p, relDuctility=1.0,  # replaced per interaction
+        damLaw=0,  # linear softening (Hillerborg); 1 would be exponential
+        neverDamage=False, equivStrainShearContrib=0.0, isoPrestress=0.0,
+        dmgTau=-1.0, plTau=-1.0,  # rate effects off (and absent from the public model)
+        density=1.0,  # masses are set per body
+        label="ldem_bars")
+
+
+def make_engines(damping=0.0, before_forces=(), after_forces=()):
+    """ForceResetter, PyRunners that must see the positions of this step,
+    InteractionLoop (Cpm), PyRunners that need this step's forces, Newton."""
+    y = _yade()
+    law = y["Law2"](omegaThreshold=1.0, epsSoft=1.0, label="ldem_law")
+    return ([y["ForceResetter"]()] + list(before_forces) +
+            [y["InteractionLoop"]([y["Ig2"]()], [y["Ip2"]()], [law], label="ldem_loop")] + list(after_forces) +
+            [y["NewtonIntegrator"](damping=damping, gravity=(0, 0, 0), label="ldem_newton")])
+
+
+def add_node(pos, mass, radius, material, blocked="XYZ"):
+    """One sphere = one lattice node; rotations are always blocked."""
+    y = _yade()
+    O = y["O"]
+    b = y["utils"].sphere(tuple(float(c) for c in pos), radius, material=material)
+    b.state.mass = float(mass)
+    b.state.blockedDOFs = blocked if "XYZ" in blocked else blocked + "XYZ"
+    return O.bodies.append(b)
+
+
+class CpmBars:
+    """The bars of a lattice as Cpm interactions, with their ldem parameters
+    (end body ids, EA [N], L [m], eps_p (scalar or per bar), eps_r per bar).
+    Needs O.engines from make_engines() (createInteraction uses its functors)."""
+
+    def __init__(self, ids1, ids2, EA, L, eps_p, eps_r, radius):
+        y = _yade()
+        O = self.O = y["O"]
+        self.ids1 = np.asarray(ids1, dtype=int)
+        self.ids2 = np.asarray(ids2, dtype=int)
+        self.EA = np.asarray(EA, dtype=float)
+        self.L = np.asarray(L, dtype=float)
+        self.eps_r = np.asarray(eps_r, dtype=float)
+        self.eps_p = np.broadcast_to(np.asarray(eps_p, dtype=float), self.eps_r.shape).copy()  # scalar or per bar
+        self.radius = float(radius)
+        # r1 + r2 as Ig2_Sphere_Sphere_ScGeom computes it, and the refPD we give the law
+        self.rsum = np.array([O.bodies[int(a)].shape.radius + O.bodies[int(b)].shape.radius
+                              for a, b in zip(self.ids1, self.ids2)])
+        self.refPD = self.rsum - self.L
+        # What the law gets: eps_p and eps_r, except for clamped bars (eps_r = eps_p),
+        # elastic up to eps_p inclusive, broken beyond: onset = fracture = eps_p+.
+        clamped = self.eps_r <= self.eps_p
+        up = np.nextafter(self.eps_p, np.inf)
+        self.onset = np.where(clamped, up, self.eps_p)
+        self.fracture = np.where(clamped, up, self.eps_r)
+        self.clamped = int(clamped.sum())
+        area = math.pi * self.radius ** 2  # what the law's first call will use as crossSection
+        self.interactions = []
+        for k in range(len(self.ids1)):
+            i = y["utils"].createInteraction(int(self.ids1[k]), int(self.ids2[k]))
+            p = i.phys
+            p.E = float(self.EA[k]) / area
+            p.G = 0.0
+            p.epsCrackOnset = float(self.onset[k])
+            p.relDuctility = float(self.fracture[k] / self.onset[k])
+            p.isCohesive = True
+            self.interactions.append(i)
+        self.finished = False
+
+    def finish_first_step(self):
+        """After the law's first ("fresh") call: exact ldem numbers per bar."""
+        for k, i in enumerate(self.interactions):
+            p = i.phys
+            p.crossSection = 1.0
+            p.E = float(self.EA[k])
+            p.kn = float(self.EA[k] / self.L[k])
+            p.ks = 0.0
+            p.epsCrackOnset = float(self.onset[k])
+            p.epsFracture = float(self.fracture[k])
+            p.refLength = float(self.L[k])
+            p.refPD = float(self.refPD[k])
+        self.finished = True
+
+    def check_alive(self):
+        """Number of bars whose interaction is gone (must stay 0)."""
+        return sum(1 for i in self.interactions if not i.isReal)
+
+
+class RuptureGuard:
+    """Before each force evaluation: bars whose strain reaches eps_r get
+    epsCrackOnset = 1e-300 (omega == 1: no tension, elastic compression, never
+    deleted). Also tracks ldem's damage kappa of every bar from the same strains."""
+
+    def __init__(self, bars, states):
+        self.bars = bars
+        self.states = states  # body states, in body-id order
+        n = len(bars.ids1)
+        self.kappa = np.zeros(n)
+        self.switched = np.zeros(n, dtype=bool)
+        self.threshold = bars.fracture * (1.0 - GUARD_MARGIN)
+        self.early = []  # (bar, strain) of bars switched at a strain below ldem's rupture
+        self.closed = np.zeros(n, dtype=bool)  # ruptured bars that were compressed later (crack closure)
+        self.last_strain = np.zeros(n)
+
+    def positions(self):
+        return np.array([[p[0], p[1], p[2]] for p in (s.pos for s in self.states)])
+
+    def strains(self, x=None):
+        """The law's epsN, bit for bit: Ig2_Sphere_Sphere_ScGeom's norm and
+        penetration depth, then (refPD - penetrationDepth) / refLength."""
+        x = self.positions() if x is None else x
+        d = x[self.bars.ids2] - x[self.bars.ids1]
+        norm = np.sqrt(d[:, 0] * d[:, 0] + (d[:, 1] * d[:, 1] + d[:, 2] * d[:, 2]))  # Eigen's squaredNorm order
+        pd = self.bars.rsum - norm
+        return (self.bars.refPD - pd) / self.bars.L
+
+    def __call__(self):
+        eps = self.strains()
+        self.last_strain = eps
+        if not self.bars.finished:
+            return  # step 0: the law measures its own refLength (all strains are 0)
+        np.maximum(self.kappa, eps, out=self.kappa)
+        self.closed |= self.switched & (eps < 0)
+        hit = np.nonzero((eps >= self.threshold) & ~self.switched)[0]
+        for k in hit:
+            self.bars.interactions[k].phys.epsCrackOnset = BROKEN_ONSET
+            self.switched[k] = True
+            if eps[k] < self.bars.fracture[k]:
+                self.early.append((int(k), float(eps[k])))
+
+    def verify(self):
+        """Largest |guard strain - law's epsN| over the bars (after a step,
+        before the bodies move again; must be 0)."""
+        epsN = np.array([i.phys.epsN for i in self.bars.interactions])
+        return float(np.max(np.abs(epsN - self.last_strain))) if len(epsN) else 0.0
+
+    def counts(self):
+        """(damaged, broken) as ldem's damageState on the tracked kappa."""
+        broken = self.kappa >= self.bars.eps_r
+        damaged = (self.kappa > self.bars.eps_p) & ~broken
+        return int(damaged.sum()), int(broken.sum())
+
+
+def cube_constraints(sim, loading):
+    """ldem's cubeTestConstraints rebuilt from the lattice: per node a YADE
+    blockedDOFs string (translations) and the drive weight of the upper nodes."""
+    lat = sim.lattice
+    L0, nx = lat.L0, lat.nx
+    x0, y0 = np.asarray(lat.x0), np.asarray(lat.y0)
+    held = [""] * lat.n_nodes
+    bottom, top = np.asarray(sim.bottom_nodes), np.asarray(sim.top_nodes)
+    for n in bottom:
+        i, j = int(round(x0[n] / L0)), int(round(y0[n] / L0))
+        pin = (i == 0 and j == 0) or (i == nx and j == 0)
+        h = "z"
+        if not loading.bottom_lateral_free or pin:
+            if not loading.bottom_lateral_free or i == 0:
+                h += "x"
+            h += "y"
+        held[n] = h
+    width = nx * L0
+    weights = np.array([1.0 if loading.shape == "uniform" else x0[n] / width for n in top])
+    for n in top:
+        held[n] = "z" if loading.top_lateral_free else "xyz"
+    return held, weights
+
+
+class CubeSpecimen:
+    """The ldem specimen ``sim`` (an ldem._core.Simulation, built with LoadingParams
+    ``loading``) rebuilt in YADE's O: same nodes, masses, bars, per-bar eps_r (from
+    the same seed, read from sim.eps_r), boundary conditions, drive U(t) and dt."""
+
+    def __init__(self, sim, loading, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
+        if sim.steps != 0:
+            raise ValueError("CubeSpecimen needs an ldem Simulation that has not run yet (its initial state)")
+        y = _yade()
+        O = self.O = y["O"]
+        if reset:
+            O.reset()
+        lat = sim.lattice
+        self.sim, self.loading = sim, loading
+        self.height, self.face_area = sim.height, sim.face_area
+        self.v0 = loading.strain_rate * sim.height
+        self.ramp_time = sim.ramp_time
+        self.dt = sim.dt
+        self.radius = radius_factor * lat.L0
+        held, self.top_weights = cube_constraints(sim, loading)
+        self.mean_top_weight = float(self.top_weights.mean())
+        self.bottom = [int(n) for n in sim.bottom_nodes]
+        self.top = [int(n) for n in sim.top_nodes]
+
+        self._name = _register(name, self)
+        O.engines = make_engines(
+            damping=damping,
+            before_forces=[y["PyRunner"](command=self._name + "._before_forces()", iterPeriod=1, initRun=True,
+                                         label="ldem_drive_guard")],
+            after_forces=[y["PyRunner"](command=self._name + "._after_forces()", iterPeriod=1, initRun=True,
+                                        label="ldem_recorder")])
+        O.dt = self.dt
+        mat = O.materials.append(bar_material(sim.eps_p))
+        x0, y0, z0, mass = (np.asarray(a) for a in (lat.x0, lat.y0, lat.z0, lat.mass))
+        for n in range(lat.n_nodes):
+            bid = add_node((x0[n], y0[n], z0[n]), mass[n], self.radius, mat, held[n])
+            assert bid == n
+        self.z0_top = z0[self.top]
+        self.z0_top_mean = float(np.mean(self.z0_top))
+        self.bars = CpmBars(lat.n1, lat.n2, lat.EA, lat.length, sim.eps_p, sim.eps_r, self.radius)
+        self.states = [b.state for b in O.bodies]
+        self.top_states = [self.states[n] for n in self.top]
+        self.guard = RuptureGuard(self.bars, self.states)
+        self.curve = []  # (step, time, mean_strain, stress_bottom, stress_top, damaged, broken)
+        self.peak_stress, self.strain_at_peak = 0.0, 0.0
+        self.stop_reason = ""
+        self.final_strain, self.stop_fraction, self.callback = math.inf, 0.01, None
+
+    # -- engines -------------------------------------------------------------
+    def _before_forces(self):
+        O = self.O
+        t, dt = O.time, O.dt
+        U, Unext = drive_displacement(t, self.v0, self.ramp_time), drive_displacement(t + dt, self.v0,
+                                                                                        self.ramp_time)
+        for s, z0, w in zip(self.top_states, self.z0_top, self.top_weights):
+            p, v = s.pos, s.vel
+            s.pos = type(p)(p[0], p[1], z0 + w * U)
+            s.vel = type(v)(v[0], v[1], w * (Unext - U) / dt)
+        self.guard()
+
+    def _after_forces(self):
+        O = self.O
+        if not self.bars.finished:
+            self.bars.finish_first_step()
+        fz_bottom = sum(O.forces.f(n)[2] for n in self.bottom)
+        fz_top = sum(O.forces.f(n)[2] for n in self.top)
+        disp = sum(s.pos[2] for s in self.top_states) / len(self.top) - self.z0_top_mean
+        strain = disp / self.height
+        stress = fz_bottom / self.face_area
+        damaged, broken = self.guard.counts()
+        self.curve.append((O.iter, O.time, strain, stress, -fz_top / self.face_area, damaged, broken))
+        if stress > self.peak_stress:
+            self.peak_stress, self.strain_at_peak = stress, strain
+        keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
+        if broken > 0 and stress < self.stop_fraction * self.peak_stress:
+            self.stop_reason = "split"
+        elif strain >= self.final_strain:
+            self.stop_reason = "final_strain"
+        elif not keep:
+            self.stop_reason = "stopped"
+        if self.stop_reason:
+            O.pause()
+
+    # -- run -----------------------------------------------------------------
+    def run(self, final_strain=2e-3, stop_fraction=0.01, max_steps=None, callback=None):
+        """Runs until stress < stop_fraction x peak after bars broke (as ldem's
+        "split"), the mean strain reaches final_strain, or callback(row) returns
+        False. Returns a dict with peak_stress [Pa], strain_at_peak, steps,
+        stop_reason, curve (numpy array of step, time, mean_strain,
+        stress_bottom, stress_top, damaged, broken), guard_early, lost_bars."""
+        self.final_strain, self.stop_fraction, self.callback = final_strain, stop_fraction, callback
+        self.stop_reason = ""
+        if max_steps is None:  # time to the final strain + ramp, with margin
+            t_final = final_strain * self.height / (self.v0 * self.mean_top_weight) + 0.5 * self.ramp_time
+            max_steps = int(1.2 * t_final / self.dt) + 10
+        self.O.run(int(max_steps), True)
+        if not self.stop_reason:
+            self.stop_reason = "max_steps"
+        return dict(peak_stress=self.peak_stress, strain_at_peak=self.strain_at_peak, steps=self.O.iter,
+                    stop_reason=self.stop_reason, curve=np.array(self.curve), guard_early=list(self.guard.early),
+                    lost_bars=self.bars.check_alive())

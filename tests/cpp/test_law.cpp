@@ -1,0 +1,255 @@
+// Hillerborg's triangle (LDEM_SPEC section 3): the pure functions of one bar,
+// then the same law driven through the force loop (computeInternalForces) and
+// the energy bookkeeping (barEnergies) on a one-module lattice.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "ldem/HillerborgLaw.hpp"
+#include "ldem/InternalForces.hpp"
+#include "ldem/Lattice.hpp"
+#include "ldem/Parallel.hpp"
+#include "ldem/RandomField.hpp"
+
+using namespace ldem;
+
+namespace {
+
+// One normal bar of the study's material: L0 = 0.02, A_n = 0.4 L0^2, A_f = c_a L0^2.
+struct Bar {
+    double L = 0.02;
+    double EA = 3.5e10 * 0.4 * 0.02 * 0.02;  // 5.6e6 N
+    double Af = 0.1385 * 0.02 * 0.02;
+    double Gf = 100.0;
+    double epsP = 6.3e-5;
+    double epsR() const { return limitStrain(Af, Gf, EA, epsP, L).epsR; }
+};
+
+// Force along the loading envelope (monotonic pull): kappa = eps.
+double envelope(const Bar& b, double eps) {
+    return hillerborgForce(eps, updateDamage(0.0, eps), b.EA, b.epsP, b.epsR());
+}
+
+// Work of the envelope force from 0 to e, L * integral F d(eps), by a fine
+// trapezoid rule (the law is only evaluated, never integrated in closed form).
+double envelopeWork(const Bar& b, double e, int n = 400000) {
+    const double h = e / n;
+    double w = 0.5 * (envelope(b, 0) + envelope(b, e));
+    for (int i = 1; i < n; ++i) w += envelope(b, i * h);
+    return w * h * b.L;
+}
+
+}  // namespace
+
+TEST(HillerborgLaw, LimitStrainFromTriangleArea) {
+    const Bar b;
+    const LimitStrain ls = limitStrain(b.Af, b.Gf, b.EA, b.epsP, b.L);
+    EXPECT_FALSE(ls.clamped);
+    // 1/2 EA eps_p eps_r L = A_f G_f.
+    EXPECT_NEAR(0.5 * b.EA * b.epsP * ls.epsR * b.L, b.Af * b.Gf, 1e-12 * b.Af * b.Gf);
+    EXPECT_GT(ls.epsR, 10 * b.epsP);  // G_f = 100 N/m: a long softening branch (eps_r ~ 1.6e-3)
+}
+
+TEST(HillerborgLaw, MonotonicPullDissipatesAfGf) {
+    const Bar b;
+    const double epsR = b.epsR();
+    // Up to eps_p: elastic.
+    EXPECT_DOUBLE_EQ(envelope(b, 0.5 * b.epsP), b.EA * 0.5 * b.epsP);
+    EXPECT_DOUBLE_EQ(envelope(b, b.epsP), b.EA * b.epsP);
+    // Softening is linear: half way from eps_p to eps_r carries half the peak force.
+    EXPECT_NEAR(envelope(b, 0.5 * (b.epsP + epsR)), 0.5 * b.EA * b.epsP, 1e-9 * b.EA * b.epsP);
+    // No tension at and beyond eps_r.
+    EXPECT_EQ(envelope(b, epsR), 0.0);
+    EXPECT_EQ(envelope(b, 2 * epsR), 0.0);
+    // Total work of a monotonic pull past eps_r = A_f G_f.
+    const double W = envelopeWork(b, 1.3 * epsR);
+    EXPECT_NEAR(W, b.Af * b.Gf, 1e-6 * b.Af * b.Gf);
+    EXPECT_DOUBLE_EQ(dissipatedEnergy(epsR, b.EA, b.epsP, epsR, b.L), b.Af * b.Gf);
+    EXPECT_DOUBLE_EQ(dissipatedEnergy(3 * epsR, b.EA, b.epsP, epsR, b.L), b.Af * b.Gf);
+    EXPECT_EQ(dissipatedEnergy(0.9 * b.epsP, b.EA, b.epsP, epsR, b.L), 0.0);
+}
+
+TEST(HillerborgLaw, DissipatedPlusStoredEqualsEnvelopeWork) {
+    const Bar b;
+    const double epsR = b.epsR();
+    for (double f : {0.3, 0.9, 1.0, 1.5, 4.0, 10.0, 20.0}) {
+        const double kappa = std::min(f * b.epsP, 1.2 * epsR);
+        const double W = envelopeWork(b, kappa, 200000);
+        const double D = dissipatedEnergy(kappa, b.EA, b.epsP, epsR, b.L);
+        const double S = storedEnergy(kappa, kappa, b.EA, b.epsP, epsR, b.L);
+        EXPECT_NEAR(D + S, W, 1e-7 * b.Af * b.Gf) << "kappa = " << kappa;
+        EXPECT_GE(D, 0.0);
+        EXPECT_GE(S, 0.0);
+    }
+    // Dissipation grows monotonically with damage.
+    double prev = -1;
+    for (double k = 0; k <= 1.1 * epsR; k += epsR / 97) {
+        const double D = dissipatedEnergy(k, b.EA, b.epsP, epsR, b.L);
+        EXPECT_GE(D, prev);
+        prev = D;
+    }
+}
+
+TEST(HillerborgLaw, UnloadingFollowsSecantToOrigin) {
+    const Bar b;
+    const double epsR = b.epsR();
+    for (double kappa : {2 * b.epsP, 0.5 * (b.epsP + epsR), 0.9 * epsR}) {
+        const double Fk = hillerborgForce(kappa, kappa, b.EA, b.epsP, epsR);
+        ASSERT_GT(Fk, 0.0);
+        ASSERT_LT(Fk, b.EA * b.epsP);
+        // Force at kappa/2 on the unloading branch = half the envelope force at kappa.
+        EXPECT_NEAR(hillerborgForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
+        // Linear through the origin everywhere below kappa.
+        EXPECT_NEAR(hillerborgForce(0.2 * kappa, kappa, b.EA, b.epsP, epsR), 0.2 * Fk, 1e-12 * Fk);
+        // Reloading to kappa gets back the envelope; damage does not grow below kappa.
+        EXPECT_EQ(updateDamage(kappa, 0.5 * kappa), kappa);
+        EXPECT_EQ(updateDamage(kappa, -kappa), kappa);
+        EXPECT_EQ(updateDamage(kappa, 1.1 * kappa), 1.1 * kappa);
+        // Stored energy on the secant at kappa/2 is a quarter of that at kappa.
+        EXPECT_NEAR(storedEnergy(0.5 * kappa, kappa, b.EA, b.epsP, epsR, b.L),
+                    0.25 * storedEnergy(kappa, kappa, b.EA, b.epsP, epsR, b.L), 1e-15);
+        // Secant ratio.
+        EXPECT_NEAR(secantRatio(kappa, b.epsP, epsR), Fk / (b.EA * kappa), 1e-12);
+    }
+    // Below eps_p there is no damage: unloading is elastic with full stiffness.
+    EXPECT_DOUBLE_EQ(hillerborgForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
+}
+
+TEST(HillerborgLaw, CompressionIsElasticEvenAfterRupture) {
+    const Bar b;
+    const double epsR = b.epsR();
+    for (double kappa : {0.0, 0.5 * b.epsP, 3 * b.epsP, epsR, 5 * epsR}) {
+        for (double eps : {-1e-5, -1e-3}) {
+            EXPECT_DOUBLE_EQ(hillerborgForce(eps, kappa, b.EA, b.epsP, epsR), b.EA * eps);
+            EXPECT_DOUBLE_EQ(storedEnergy(eps, kappa, b.EA, b.epsP, epsR, b.L), 0.5 * b.EA * eps * eps * b.L);
+        }
+    }
+    // A broken bar carries no tension at any strain.
+    EXPECT_EQ(hillerborgForce(0.5 * epsR, 2 * epsR, b.EA, b.epsP, epsR), 0.0);
+}
+
+TEST(HillerborgLaw, SnapBackIsClampedToPerfectlyBrittle) {
+    Bar b;
+    b.Gf = 1.0;  // eps_r = 1.57e-5 < eps_p
+    const double raw = 2 * b.Af * b.Gf / (b.EA * b.epsP * b.L);
+    ASSERT_LT(raw, b.epsP);
+    const LimitStrain ls = limitStrain(b.Af, b.Gf, b.EA, b.epsP, b.L);
+    EXPECT_TRUE(ls.clamped);
+    EXPECT_EQ(ls.epsR, b.epsP);
+    // The clamped bar is elastic up to eps_p (inclusive), then carries nothing.
+    const double past = b.epsP * (1 + 1e-12);
+    EXPECT_DOUBLE_EQ(hillerborgForce(b.epsP, b.epsP, b.EA, b.epsP, ls.epsR), b.EA * b.epsP);
+    EXPECT_EQ(hillerborgForce(past, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_EQ(hillerborgForce(0.5 * b.epsP, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_DOUBLE_EQ(hillerborgForce(0.99 * b.epsP, 0.99 * b.epsP, b.EA, b.epsP, ls.epsR), 0.99 * b.EA * b.epsP);
+    // It dissipates its whole elastic energy 1/2 L EA eps_p^2 (> A_f G_f) once past eps_p.
+    EXPECT_EQ(dissipatedEnergy(b.epsP, b.EA, b.epsP, ls.epsR, b.L), 0.0);
+    EXPECT_DOUBLE_EQ(dissipatedEnergy(past, b.EA, b.epsP, ls.epsR, b.L), 0.5 * b.L * b.EA * b.epsP * b.epsP);
+    EXPECT_GT(0.5 * b.L * b.EA * b.epsP * b.epsP, b.Af * b.Gf);
+    EXPECT_EQ(damageState(past, b.epsP, ls.epsR), DamageState::Broken);
+    // Exactly at the boundary, eps_r = eps_p is not a clamp.
+    const double GfEdge = b.EA * b.epsP * b.epsP * b.L / (2 * b.Af);
+    EXPECT_FALSE(limitStrain(b.Af, GfEdge * (1 + 1e-9), b.EA, b.epsP, b.L).clamped);
+}
+
+TEST(HillerborgLaw, DamageStates) {
+    const Bar b;
+    const double epsR = b.epsR();
+    EXPECT_EQ(damageState(0.0, b.epsP, epsR), DamageState::Undamaged);
+    EXPECT_EQ(damageState(b.epsP, b.epsP, epsR), DamageState::Undamaged);
+    EXPECT_EQ(damageState(1.01 * b.epsP, b.epsP, epsR), DamageState::Damaged);
+    EXPECT_EQ(damageState(epsR, b.epsP, epsR), DamageState::Broken);
+    EXPECT_EQ(damageState(2 * epsR, b.epsP, epsR), DamageState::Broken);
+}
+
+// The law inside the force loop. A one-module lattice under the homogeneous
+// expansion u = s x stretches every bar to strain exactly s, so the work of the
+// external forces (-f, quasi-static) is L_b F_b summed over bars, integrated
+// over s. Path: pull into softening, unload into compression, pull past every
+// eps_r, compress again. At every checkpoint the external work must equal
+// elastic + fracture energy from barEnergies; at the end the fracture energy is
+// sum A_f G_f and compression is elastic.
+TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
+    setThreads(1);  // ~30000 force evaluations of 20 bars: threads would only add overhead
+    Material m;
+    const double L0 = 0.02;
+    const Lattice lat = buildCubicLattice(1, 1, 1, L0, m);
+    const std::int64_t nb = lat.numBars();
+    BarState bars;
+    bars.epsP = m.epsP;
+    bars.kappa.assign(nb, 0.0);
+    bars.epsR.resize(nb);
+    double sumAfGf = 0, maxEpsR = 0, minEpsR = 1;
+    for (std::int64_t b = 0; b < nb; ++b) {
+        const double Gf = 50 + 100 * hashedUniform(3, b, 0);  // in [50, 150]: no clamped bar
+        const LimitStrain ls = limitStrain(lat.barAf(b), Gf, lat.barEA(b), m.epsP, lat.barLength(b));
+        ASSERT_FALSE(ls.clamped);
+        bars.epsR[b] = ls.epsR;
+        sumAfGf += lat.barAf(b) * Gf;
+        maxEpsR = std::max(maxEpsR, ls.epsR);
+        minEpsR = std::min(minEpsR, ls.epsR);
+    }
+    Field3 u(lat.numNodes()), f(lat.numNodes());
+    // Generalised force conjugate to s: dW = -f . x0 ds (the force the loader applies is -f).
+    auto load = [&](double s) {
+        for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+            u.x[i] = s * lat.x0[i], u.y[i] = s * lat.y0[i], u.z[i] = s * lat.z0[i];
+        computeInternalForces(lat, u, bars, f);
+        double Q = 0;
+        for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+            Q -= f.x[i] * lat.x0[i] + f.y[i] * lat.y0[i] + f.z[i] * lat.z0[i];
+        return Q;
+    };
+    double s = 0, Q = load(0), W = 0;
+    auto goTo = [&](double target, int n) {
+        const double h = (target - s) / n;
+        for (int i = 1; i <= n; ++i) {
+            const double sNext = s + h;
+            const double QNext = load(sNext);
+            W += 0.5 * (Q + QNext) * h;
+            s = sNext, Q = QNext;
+        }
+    };
+    auto checkBalance = [&](const char* where) {
+        const BarEnergies e = barEnergies(lat, u, bars);
+        EXPECT_NEAR(W, e.elastic + e.fracture, 2e-6 * sumAfGf) << where;
+        return e;
+    };
+    // Pull into the softening branch of every bar (but break none).
+    const double s1 = 0.5 * (m.epsP + minEpsR);
+    goTo(s1, 5000);
+    BarEnergies e = checkBalance("softening");
+    EXPECT_EQ(e.damaged, nb);
+    EXPECT_EQ(e.broken, 0);
+    EXPECT_GT(e.fracture, 0.0);
+    // Unload into compression: the secants, then full stiffness.
+    goTo(0.0, 2000);  // grid point at the kink s = 0 (secant -> full stiffness)
+    goTo(-0.5 * s1, 1000);
+    e = checkBalance("compressed after damage");
+    // Compression is elastic: every bar at strain -s1/2 stores 1/2 EA L eps^2 and
+    // the loader's force is sum EA L eps (all bars at the same strain).
+    double stored = 0, Qel = 0;
+    for (std::int64_t b = 0; b < nb; ++b) {
+        stored += 0.5 * lat.barEA(b) * lat.barLength(b) * s * s;
+        Qel += lat.barEA(b) * lat.barLength(b) * s;
+    }
+    EXPECT_NEAR(e.elastic, stored, 1e-9 * stored);
+    EXPECT_NEAR(Q, Qel, 1e-6 * std::abs(Qel));
+    // Pull past every eps_r.
+    goTo(1.2 * maxEpsR, 20000);
+    e = checkBalance("all broken");
+    EXPECT_EQ(e.broken, nb);
+    EXPECT_EQ(e.elastic, 0.0);
+    EXPECT_NEAR(e.fracture, sumAfGf, 1e-12 * sumAfGf);
+    EXPECT_NEAR(W, sumAfGf, 2e-6 * sumAfGf);
+    EXPECT_EQ(Q, 0.0);
+    // Close the cracks: compression after rupture is elastic again.
+    goTo(0.0, 100);  // broken bars carry nothing until the crack closes at s = 0
+    goTo(-1e-4, 100);
+    e = checkBalance("compressed after rupture");
+    EXPECT_NEAR(Q, -1e-4 * Qel / (-0.5 * s1), 1e-6 * std::abs(Qel));
+    EXPECT_NEAR(e.fracture, sumAfGf, 1e-12 * sumAfGf);
+}

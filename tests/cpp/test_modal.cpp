@@ -1,0 +1,196 @@
+// Natural frequencies of the lattice (LDEM_SPEC section 5): the matrix-free
+// Lanczos estimates of omega_1 and omega_max against (i) a dense eigensolver on
+// a stiffness matrix assembled here, bar by bar, independently of the library,
+// (ii) the Rayleigh quotient of smooth trial shapes (upper bound on omega_1^2)
+// and (iii) the Gershgorin bound (upper bound on omega_max^2).
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <vector>
+
+#include "ldem/InternalForces.hpp"
+#include "ldem/Lattice.hpp"
+#include "ldem/Loading.hpp"
+#include "ldem/Modal.hpp"
+#include "ldem/RandomField.hpp"
+
+using namespace ldem;
+
+namespace {
+
+// Full 3N x 3N stiffness: a bar of direction n and stiffness k = EA/L adds
+// k n n^T to the (i,i) and (j,j) blocks and -k n n^T to (i,j), (j,i).
+Eigen::MatrixXd assembleStiffness(const Lattice& lat) {
+    const Eigen::Index N = 3 * lat.numNodes();
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+    for (std::int64_t b = 0; b < lat.numBars(); ++b) {
+        const auto i = lat.n1[b], j = lat.n2[b];
+        const double dx = lat.x0[j] - lat.x0[i], dy = lat.y0[j] - lat.y0[i], dz = lat.z0[j] - lat.z0[i];
+        const double L = std::sqrt(dx * dx + dy * dy + dz * dz);
+        const double n[3] = {dx / L, dy / L, dz / L};
+        const double k = lat.barEA(b) / L;
+        for (int a = 0; a < 3; ++a)
+            for (int c = 0; c < 3; ++c) {
+                const double v = k * n[a] * n[c];
+                K(3 * i + a, 3 * i + c) += v;
+                K(3 * j + a, 3 * j + c) += v;
+                K(3 * i + a, 3 * j + c) -= v;
+                K(3 * j + a, 3 * i + c) -= v;
+            }
+    }
+    return K;
+}
+
+struct Reduced {
+    std::vector<Eigen::Index> dofs;  // free DOFs, as 3 node + d
+    Eigen::MatrixXd K, A;            // stiffness and M^-1/2 K M^-1/2 on them
+    Eigen::VectorXd m;               // masses of the free DOFs
+};
+
+Reduced reduce(const Lattice& lat, const std::vector<std::uint8_t>& mask) {
+    const Eigen::MatrixXd K = assembleStiffness(lat);
+    Reduced r;
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+        for (int d = 0; d < 3; ++d)
+            if (!(mask[i] & (1u << d))) r.dofs.push_back(3 * i + d);
+    const Eigen::Index n = Eigen::Index(r.dofs.size());
+    r.K.resize(n, n), r.A.resize(n, n), r.m.resize(n);
+    for (Eigen::Index a = 0; a < n; ++a) r.m(a) = lat.mass[r.dofs[a] / 3];
+    for (Eigen::Index a = 0; a < n; ++a)
+        for (Eigen::Index c = 0; c < n; ++c) {
+            r.K(a, c) = K(r.dofs[a], r.dofs[c]);
+            r.A(a, c) = r.K(a, c) / std::sqrt(r.m(a) * r.m(c));
+        }
+    return r;
+}
+
+// Rayleigh quotient of a trial displacement u(x, y, z) on the free DOFs.
+template <class Shape>
+double rayleigh(const Lattice& lat, const Reduced& r, Shape shape) {
+    Eigen::VectorXd u(r.dofs.size());
+    for (Eigen::Index a = 0; a < u.size(); ++a) {
+        const auto node = r.dofs[a] / 3;
+        u(a) = shape(lat.x0[node], lat.y0[node], lat.z0[node], int(r.dofs[a] % 3));
+    }
+    return u.dot(r.K * u) / u.dot(r.m.asDiagonal() * u);
+}
+
+void checkFrequencies(int n, bool rollers) {
+    SCOPED_TRACE(testing::Message() << n << "^3, bottom rollers " << rollers);
+    Material m;
+    const double L0 = 0.02, H = n * L0;
+    const Lattice lat = buildCubicLattice(n, n, n, L0, m);
+    LoadingParams lp;
+    lp.bottomLateralFree = rollers;
+    const Constraints con = cubeTestConstraints(lat, lp);
+    const Frequencies f = latticeFrequencies(lat, con.mask);
+    const Reduced r = reduce(lat, con.mask);
+
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(r.A, Eigen::EigenvaluesOnly);
+    const double lmin = es.eigenvalues()(0), lmax = es.eigenvalues()(es.eigenvalues().size() - 1);
+    ASSERT_GT(lmin, 0.0) << "constraints must remove every rigid motion";
+
+    // Rayleigh quotients of smooth shapes that respect the constraints (bottom
+    // held, top vertical DOF held): lateral sway sin(pi z / 2H), and vertical
+    // sin(pi z / H) (zero on both faces).
+    const double pi = M_PI;
+    const double Rsway =
+        rayleigh(lat, r, [&](double, double, double z, int d) { return d == 0 ? std::sin(pi * z / (2 * H)) : 0.0; });
+    const double Rvert =
+        rayleigh(lat, r, [&](double, double, double z, int d) { return d == 2 ? std::sin(pi * z / H) : 0.0; });
+    // Rigid slide in x: every free x DOF moves by 1. Admissible (the pinned DOFs
+    // stay put); only the bars at pinned nodes strain. Under rollers this is
+    // close to the fundamental mode: a nearly rigid motion held by two pins.
+    const double Rslide = rayleigh(lat, r, [&](double, double, double, int d) { return d == 0 ? 1.0 : 0.0; });
+    const double Rbest = std::min({Rsway, Rvert, Rslide});
+    // Gershgorin: every eigenvalue of A lies below max_i sum_j |A_ij|; and the
+    // largest diagonal entry is a Rayleigh quotient, hence below lambda_max.
+    double gersh = 0, diagMax = 0;
+    for (Eigen::Index a = 0; a < r.A.rows(); ++a) {
+        gersh = std::max(gersh, r.A.row(a).cwiseAbs().sum());
+        diagMax = std::max(diagMax, r.A(a, a));
+    }
+    std::printf(
+        "[ modal ] %d^3 %s: omega_1 Lanczos %.6e dense %.6e sqrt(R_sway) %.4e sqrt(R_vert) %.4e sqrt(R_slide) %.4e | "
+        "omega_max Lanczos %.6e dense %.6e sqrt(Gershgorin) %.4e | %d iterations\n",
+        n, rollers ? "rollers" : "clamped", f.omega1, std::sqrt(lmin), std::sqrt(Rsway), std::sqrt(Rvert),
+        std::sqrt(Rslide), f.omegaMax, std::sqrt(lmax), std::sqrt(gersh), f.iterations);
+
+    // The required inequalities.
+    EXPECT_LE(f.omega1 * f.omega1, Rsway * (1 + 1e-9));
+    EXPECT_LE(f.omega1 * f.omega1, Rvert * (1 + 1e-9));
+    EXPECT_LE(f.omega1 * f.omega1, Rslide * (1 + 1e-9));
+    EXPECT_LE(f.omegaMax * f.omegaMax, gersh * (1 + 1e-12));
+    EXPECT_GE(f.omegaMax * f.omegaMax, diagMax * (1 - 1e-9));
+    // Within reasonable factors of the bounds: a smooth trial shape is close to
+    // the fundamental mode; the Gershgorin bound overestimates by a bounded factor.
+    EXPECT_GT(f.omega1, 0.5 * std::sqrt(Rbest));
+    EXPECT_GT(f.omegaMax, 0.5 * std::sqrt(gersh));
+    // And Lanczos agrees with the dense eigensolver. Ritz values lie inside the
+    // spectrum, so omega_max is never overestimated (the time step is not
+    // made unsafe by the estimate) and omega_1 never underestimated.
+    EXPECT_NEAR(f.omega1, std::sqrt(lmin), 1e-5 * std::sqrt(lmin));
+    EXPECT_NEAR(f.omegaMax, std::sqrt(lmax), 1e-6 * std::sqrt(lmax));
+    EXPECT_LE(f.omegaMax, std::sqrt(lmax) * (1 + 1e-12));
+}
+
+}  // namespace
+
+// Clamped bottom (default): omega_1 is a lateral sway, 0.81 x sqrt(R_sway).
+TEST(Modal, LanczosAgainstDenseRayleighAndGershgorin3) { checkFrequencies(3, false); }
+// Bottom on rollers: omega_1 (7.9e3 rad/s on 4^3) is not a deformation mode
+// but a nearly rigid slide/rotation of the whole cube held only by the two
+// pinned corner nodes (0.60 x sqrt(R_slide); the sway is 4.7e4). So under
+// rollers D_f = 2 zeta omega_1 damps the deformation modes far less than zeta.
+TEST(Modal, LanczosAgainstDenseRayleighAndGershgorin4Rollers) { checkFrequencies(4, true); }
+
+// The matrix-free product used by Lanczos is the assembled stiffness.
+TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
+    Material m;
+    const Lattice lat = buildCubicLattice(2, 3, 2, 0.02, m);
+    const Eigen::MatrixXd K = assembleStiffness(lat);
+    // Symmetric, positive semi-definite, six rigid-body modes.
+    EXPECT_LT((K - K.transpose()).cwiseAbs().maxCoeff(), 1e-6);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(K, Eigen::EigenvaluesOnly);
+    const double top = es.eigenvalues().maxCoeff();
+    int zero = 0;
+    for (Eigen::Index i = 0; i < es.eigenvalues().size(); ++i) {
+        EXPECT_GT(es.eigenvalues()(i), -1e-9 * top);
+        zero += std::abs(es.eigenvalues()(i)) < 1e-9 * top;
+    }
+    EXPECT_EQ(zero, 6);
+
+    Field3 x(lat.numNodes()), y(lat.numNodes());
+    Eigen::VectorXd xv(3 * lat.numNodes());
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+        x.x[i] = xv(3 * i) = hashedUniform(9, i, 0) - 0.5;
+        x.y[i] = xv(3 * i + 1) = hashedUniform(9, i, 1) - 0.5;
+        x.z[i] = xv(3 * i + 2) = hashedUniform(9, i, 2) - 0.5;
+    }
+    linearStiffnessProduct(lat, x, y);
+    const Eigen::VectorXd yv = K * xv;
+    const double scale = yv.cwiseAbs().maxCoeff();
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+        EXPECT_NEAR(y.x[i], yv(3 * i), 1e-12 * scale);
+        EXPECT_NEAR(y.y[i], yv(3 * i + 1), 1e-12 * scale);
+        EXPECT_NEAR(y.z[i], yv(3 * i + 2), 1e-12 * scale);
+    }
+    // Small displacements through the nonlinear force loop give -K x too.
+    BarState bars;
+    bars.epsP = 1.0;
+    bars.epsR.assign(lat.numBars(), 1.0);
+    bars.kappa.assign(lat.numBars(), 0.0);
+    Field3 small(lat.numNodes()), f(lat.numNodes());
+    const double a = 1e-9;  // displacement amplitude [m]: geometric nonlinearity ~ a / L0 = 5e-8
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+        small.x[i] = a * x.x[i], small.y[i] = a * x.y[i], small.z[i] = a * x.z[i];
+    computeInternalForces(lat, small, bars, f);
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+        EXPECT_NEAR(f.x[i], -a * yv(3 * i), 1e-6 * a * scale);
+        EXPECT_NEAR(f.y[i], -a * yv(3 * i + 1), 1e-6 * a * scale);
+        EXPECT_NEAR(f.z[i], -a * yv(3 * i + 2), 1e-6 * a * scale);
+    }
+}
