@@ -30,11 +30,14 @@ inline LimitStrain limitStrain(double Af, double Gf, double EA, double epsP, dou
     return epsR < epsP ? LimitStrain{epsP, true} : LimitStrain{epsR, false};
 }
 
-// Secant stiffness ratio s(kappa) = F_envelope(kappa) / (EA kappa), in [0, 1].
+// Secant stiffness ratio s(kappa) = F_envelope(kappa) / (EA kappa), in [0, 1]:
+//   1 for kappa <= eps_p,  eps_p (eps_r - kappa) / (kappa (eps_r - eps_p)) on the
+//   softening branch,  0 for kappa >= eps_r.
+// Written as selects, without branches, so that the bar loop vectorizes; a
+// clamped bar (eps_r = eps_p) past eps_p gives -inf, hence 0.
 inline double secantRatio(double kappa, double epsP, double epsR) {
-    if (kappa <= epsP) return 1.0;
-    if (kappa >= epsR) return 0.0;
-    return epsP * (epsR - kappa) / (kappa * (epsR - epsP));
+    const double r = epsP * (epsR - kappa) / (kappa * (epsR - epsP));
+    return kappa <= epsP ? 1.0 : (r > 0.0 ? r : 0.0);
 }
 
 // Axial force (tension positive) at strain eps with damage kappa >= eps

@@ -5,26 +5,33 @@
 namespace ldem {
 
 namespace {
-// One DOF: returns its damping work.
-inline double advanceDof(double m, double f, double dt, double c, double Df, double& u, double& v) {
-    const double vNew = ((1.0 - c) * v + dt * f / m) / (1.0 + c);
+// One DOF, unless held; returns its damping work. Selects instead of branches,
+// so the node loop vectorizes.
+inline double advanceDof(bool held, double m, double invM, double f, const CentralDifference& cd, double& u,
+                         double& v) {
+    const double vNew = cd.a * v + cd.b * f * invM;
     const double vBar = 0.5 * (v + vNew);
-    v = vNew;
-    u += dt * vNew;
-    return Df * m * vBar * vBar * dt;
+    u = held ? u : u + cd.dt * vNew;
+    v = held ? v : vNew;
+    return held ? 0.0 : cd.Df * m * vBar * vBar * cd.dt;
 }
 }  // namespace
 
-double centralDifferenceStep(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask,
-                             const Field3& f, double dt, double Df, Field3& u, Field3& v) {
-    const double c = 0.5 * Df * dt;
-    return blockSum<1>(std::int64_t(mass.size()), [&](std::int64_t i, std::array<double, 1>& damping) {
-        const unsigned held = mask[i];
-        const double m = mass[i];
-        if (!(held & 1)) damping[0] += advanceDof(m, f.x[i], dt, c, Df, u.x[i], v.x[i]);
-        if (!(held & 2)) damping[0] += advanceDof(m, f.y[i], dt, c, Df, u.y[i], v.y[i]);
-        if (!(held & 4)) damping[0] += advanceDof(m, f.z[i], dt, c, Df, u.z[i], v.z[i]);
-    })[0];
+double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
+                    const Field3& f, Field3& u, Field3& v) {
+    double damping = 0.0;
+    for (std::int32_t r = lat.nodeLayerStart[m]; r < lat.nodeLayerStart[m + 1]; ++r) {
+        const std::int32_t first = lat.nodeRows[r].first, end = first + lat.nodeRows[r].count;
+#pragma omp simd reduction(+ : damping)
+        for (std::int32_t i = first; i < end; ++i) {
+            const unsigned h = mask[i];
+            const double mi = lat.mass[i], invM = lat.invMass[i];
+            damping += advanceDof(h & 1, mi, invM, f.x[i], cd, u.x[i], v.x[i]) +
+                       advanceDof(h & 2, mi, invM, f.y[i], cd, u.y[i], v.y[i]) +
+                       advanceDof(h & 4, mi, invM, f.z[i], cd, u.z[i], v.z[i]);
+        }
+    }
+    return damping;
 }
 
 double kineticEnergy(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask, const Field3& v) {

@@ -3,12 +3,14 @@
 //   v(n+1/2) = [ (1 - D_f dt/2) v(n-1/2) + dt (P - F_int)/m ] / (1 + D_f dt/2)
 //   x(n+1)   = x(n) + dt v(n+1/2)
 // Here f is the force of the bars on the nodes (f = -F_int) and P = 0: the
-// specimen is loaded only through its prescribed degrees of freedom.
+// specimen is loaded only through its prescribed degrees of freedom, which
+// the integrator leaves alone (Loading sets them).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "ldem/InternalForces.hpp"
+#include "ldem/Lattice.hpp"
 
 namespace ldem {
 
@@ -18,12 +20,20 @@ inline double stableTimeStep(double omegaMax) { return 2.0 / omegaMax; }
 // D_f = 2 zeta omega_1: damping ratio zeta on the fundamental mode.
 inline double massDampingCoefficient(double zeta, double omega1) { return 2.0 * zeta * omega1; }
 
-// Advances every DOF whose bit is not set in mask by one step; returns the work
-// of the damping forces over the step, sum D_f m vbar^2 dt with vbar the mean of
-// v(n-1/2) and v(n+1/2) (this choice makes the discrete energy balance exact:
-// 1/2 m (v+^2 - v-^2) = f (x(n+1) - x(n-1))/2 - D_f m vbar^2 dt).
-double centralDifferenceStep(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask,
-                             const Field3& f, double dt, double Df, Field3& u, Field3& v);
+// The update  v <- a v + b f/m,  x <- x + dt v,  with
+//   a = (1 - D_f dt/2) / (1 + D_f dt/2),  b = dt / (1 + D_f dt/2).
+struct CentralDifference {
+    double dt, Df, a, b;
+    CentralDifference(double dt_, double Df_)
+        : dt(dt_), Df(Df_), a((1 - 0.5 * Df_ * dt_) / (1 + 0.5 * Df_ * dt_)), b(dt_ / (1 + 0.5 * Df_ * dt_)) {}
+};
+
+// Advances every DOF of the nodes of layer m whose bit is not set in mask;
+// returns the work of the damping forces over the step, sum D_f m vbar^2 dt
+// with vbar the mean of v(n-1/2) and v(n+1/2). This choice makes the discrete
+// energy balance exact: 1/2 m (v+^2 - v-^2) = f (x(n+1) - x(n-1))/2 - D_f m vbar^2 dt.
+double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
+                    const Field3& f, Field3& u, Field3& v);
 
 // Sum of 1/2 m v^2 over the DOFs not set in mask.
 double kineticEnergy(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask, const Field3& v);

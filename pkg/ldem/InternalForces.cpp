@@ -6,80 +6,79 @@
 
 namespace ldem {
 
-void Field3::setZero() {
-#pragma omp parallel for schedule(static)
-    for (std::int64_t i = 0; i < std::int64_t(x.size()); ++i) x[i] = y[i] = z[i] = 0.0;
-}
-
 namespace {
 
-// Calls force(b, family, dux, duy, duz, g) for every bar, colour by colour;
-// force writes in g[3] the force on the bar's first node, the second gets -g.
-template <class BarForce>
-void scatterBarForces(const Lattice& lat, const Field3& u, Field3& f, BarForce force) {
-    f.setZero();
-    const auto* n1 = lat.n1.data();
-    const auto* n2 = lat.n2.data();
-    for (const BarRange& c : lat.colours) {
-        const BarFamily& fam = lat.families[lat.family[c.begin]];
-#pragma omp parallel for schedule(static)
-        for (std::int64_t b = c.begin; b < c.end; ++b) {
-            const auto i = n1[b], j = n2[b];
-            double g[3];
-            force(b, fam, u.x[j] - u.x[i], u.y[j] - u.y[i], u.z[j] - u.z[i], g);
-            f.x[i] += g[0], f.y[i] += g[1], f.z[i] += g[2];
-            f.x[j] -= g[0], f.y[j] -= g[1], f.z[j] -= g[2];
-        }
+// Calls perBar(b, fam, EA, eps) for every bar of row r.
+template <class PerBar>
+void forEachBarStrainInRow(const Lattice& lat, const Field3& u, std::int64_t r, PerBar perBar) {
+    const BarRow& row = lat.barRows[r];
+    const BarFamily& fam = lat.families[row.family];
+    for (int p = 0; p < row.count; ++p) {
+        const auto a = row.nodeA + p, b = row.nodeB + p;
+        const double dux = u.x[b] - u.x[a], duy = u.y[b] - u.y[a], duz = u.z[b] - u.z[a];
+        const double d[3] = {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz};
+        const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double EA = fam.EA * ((p == 0 || p == row.count - 1) ? row.endShare : row.share);
+        perBar(row.first + p, fam, EA, barStrain(fam.d0.data(), fam.L, dux, duy, duz, l));
     }
 }
 
 }  // namespace
 
-void computeInternalForces(const Lattice& lat, const Field3& u, BarState& bars, Field3& f) {
-    double* kappa = bars.kappa.data();
-    const double* epsR = bars.epsR.data();
-    const double epsP = bars.epsP;
-    const float* share = lat.share.data();
-    scatterBarForces(lat, u, f, [&](std::int64_t b, const BarFamily& fam, double dux, double duy, double duz,
-                                    double* g) {
-        const double d[3] = {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz};
-        const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const double eps = barStrain(fam.d0.data(), fam.L, dux, duy, duz, l);
-        const double k = updateDamage(kappa[b], eps);
-        kappa[b] = k;
-        // Tension (F > 0) pulls the first node towards the second: along +d.
-        const double s = hillerborgForce(eps, k, fam.EA * share[b], epsP, epsR[b]) / l;
-        g[0] = s * d[0], g[1] = s * d[1], g[2] = s * d[2];
-    });
+void BarForceBuffers::prepare(const Lattice& lat, int threads) {
+    if (threads == threads_ && base_.size() == std::size_t(lat.numLayers())) return;
+    threads_ = threads;
+    stride_ = std::size_t(lat.maxBarsInLayer);
+    // Buffer index of every layer: own ones at the ends of each range, a ring of three inside.
+    std::vector<int> buffer(lat.numLayers());
+    int count = 0;
+    for (int t = 0; t < threads; ++t) {
+        const auto [m0, m1] = layerRange(lat.numLayers(), t, threads);
+        const int ring = count;
+        if (m1 - m0 > 4) count += 3;
+        for (int m = m0; m < m1; ++m)
+            buffer[m] = (m < m0 + 2 || m >= m1 - 2) ? count++ : ring + (m - m0) % 3;
+    }
+    storage_.assign(std::size_t(count) * 3 * stride_, 0.0);
+    base_.resize(lat.numLayers());
+    for (int m = 0; m < lat.numLayers(); ++m) base_[m] = storage_.data() + std::size_t(buffer[m]) * 3 * stride_;
 }
 
-void linearStiffnessProduct(const Lattice& lat, const Field3& x, Field3& y) {
-    const float* share = lat.share.data();
-    scatterBarForces(lat, x, y, [&](std::int64_t b, const BarFamily& fam, double dux, double duy, double duz,
-                                    double* g) {
-        // Force on the first node of a bar of stiffness EA/L: -(EA/L)(n.du)n for K x.
+void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f) {
+    for (std::int32_t r = lat.nodeLayerStart[m]; r < lat.nodeLayerStart[m + 1]; ++r) {
+        const NodeRow& row = lat.nodeRows[r];
+        double *fx = &f.x[row.first], *fy = &f.y[row.first], *fz = &f.z[row.first];
+        for (int i = 0; i < row.count; ++i) fx[i] = fy[i] = fz[i] = 0.0;
+        for (const Incidence& in : row.incidences) {
+            const double s = in.sign;
+            const double *gx = g.x(in.layer), *gy = g.y(in.layer), *gz = g.z(in.layer);
+            const std::int32_t b0 = in.inLayerAtZero;
+#pragma omp simd
+            for (int i = in.begin; i < in.end; ++i)
+                fx[i] += s * gx[b0 + i], fy[i] += s * gy[b0 + i], fz[i] += s * gz[b0 + i];
+        }
+    }
+}
+
+void computeInternalForces(const Lattice& lat, const Field3& u, BarState& bars, BarForceBuffers& g, Field3& f) {
+    layeredForces(lat, u, g, f, HillerborgBars{bars.kappa.data(), bars.epsR.data(), bars.epsP}, [](int) {});
+}
+
+void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers& g, Field3& y) {
+    const auto linear = [](std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz,
+                           double& gx, double& gy, double& gz) {
+        // Force on node A of a bar of stiffness EA/L, negated for K x: -(EA/L)(n.du)n.
         const double n[3] = {fam.d0[0] / fam.L, fam.d0[1] / fam.L, fam.d0[2] / fam.L};
-        const double s = -fam.EA * share[b] / fam.L * (n[0] * dux + n[1] * duy + n[2] * duz);
-        g[0] = s * n[0], g[1] = s * n[1], g[2] = s * n[2];
-    });
+        const double s = -EA / fam.L * (n[0] * dux + n[1] * duy + n[2] * duz);
+        gx = s * n[0], gy = s * n[1], gz = s * n[2];
+    };
+    layeredForces(lat, x, g, y, linear, [](int) {});
 }
-
-namespace {
-template <class PerBar>
-void forEachBarStrain(const Lattice& lat, const Field3& u, std::int64_t b, PerBar perBar) {
-    const auto i = lat.n1[b], j = lat.n2[b];
-    const BarFamily& fam = lat.families[lat.family[b]];
-    const double dux = u.x[j] - u.x[i], duy = u.y[j] - u.y[i], duz = u.z[j] - u.z[i];
-    const double d[3] = {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz};
-    const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-    perBar(fam, barStrain(fam.d0.data(), fam.L, dux, duy, duz, l));
-}
-}  // namespace
 
 BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bars) {
-    const auto sums = blockSum<4>(lat.numBars(), [&](std::int64_t b, std::array<double, 4>& acc) {
-        forEachBarStrain(lat, u, b, [&](const BarFamily& fam, double eps) {
-            const double EA = fam.EA * lat.share[b], epsR = bars.epsR[b];
+    const auto sums = blockSum<4>(std::int64_t(lat.barRows.size()), [&](std::int64_t r, std::array<double, 4>& acc) {
+        forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily& fam, double EA, double eps) {
+            const double epsR = bars.epsR[b];
             // kappa is the damage reached at the last force evaluation; the bar
             // can only have gone further since, so take the larger.
             const double kappa = updateDamage(bars.kappa[b], eps);
@@ -96,8 +95,8 @@ BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bar
 std::vector<double> barStrains(const Lattice& lat, const Field3& u) {
     std::vector<double> eps(lat.numBars());
 #pragma omp parallel for schedule(static)
-    for (std::int64_t b = 0; b < lat.numBars(); ++b)
-        forEachBarStrain(lat, u, b, [&](const BarFamily&, double e) { eps[b] = e; });
+    for (std::int64_t r = 0; r < std::int64_t(lat.barRows.size()); ++r)
+        forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily&, double, double e) { eps[b] = e; });
     return eps;
 }
 

@@ -1,6 +1,8 @@
 #include "ldem/Lattice.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <stdexcept>
 #include <string>
 
@@ -20,35 +22,35 @@ std::int64_t expectedBarCount(int nx, int ny, int nz) {
 
 namespace {
 
-// Number of modules along one axis that touch a lattice line at index j of [0, n].
+// Number of modules along one axis that touch a lattice plane at index j of [0, n].
 int modulesBeside(int j, int n) { return (j > 0 ? 1 : 0) + (j < n ? 1 : 0); }
 
-class Builder {
-public:
-    Builder(Lattice& lat) : lat_(lat) {}
-
-    // Starts a family; subsequent bars belong to it.
-    void family(BarKind kind, std::array<double, 3> d0, double fullArea, double fullAf, double E) {
-        const double L = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
-        lat_.families.push_back({kind, d0, L, E * fullArea, fullAf});
-    }
-    void colourBegin() { begin_ = lat_.numBars(); }
-    void colourEnd() {
-        if (lat_.numBars() > begin_) lat_.colours.push_back({begin_, lat_.numBars()});
-    }
-    void bar(std::int32_t a, std::int32_t b, float share) {
-        lat_.n1.push_back(a);
-        lat_.n2.push_back(b);
-        lat_.family.push_back(static_cast<std::uint8_t>(lat_.families.size() - 1));
-        lat_.share.push_back(share);
-    }
-
-private:
-    Lattice& lat_;
-    std::int64_t begin_ = 0;
-};
+// Share k/4 of an edge bar along `axis` at box index idx: k = modules around it.
+double edgeShare(const std::array<int, 3>& idx, int axis, const int n[3]) {
+    int k = 1;
+    for (int o = 0; o < 3; ++o)
+        if (o != axis) k *= modulesBeside(idx[o], n[o]);
+    return k / 4.0;
+}
 
 }  // namespace
+
+std::array<double, 3> Lattice::position(std::int32_t node) const {
+    const std::int32_t nc = numCorners();
+    if (node < nc) {
+        const int i = node % (nx + 1), j = (node / (nx + 1)) % (ny + 1), k = node / ((nx + 1) * (ny + 1));
+        return {i * L0, j * L0, k * L0};
+    }
+    const std::int32_t c = node - nc;
+    const int i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
+    return {(i + 0.5) * L0, (j + 0.5) * L0, (k + 0.5) * L0};
+}
+
+const BarRow& Lattice::rowOf(std::int64_t bar) const {
+    auto it = std::upper_bound(barRows.begin(), barRows.end(), bar,
+                               [](std::int64_t b, const BarRow& row) { return b < row.first; });
+    return *(it - 1);
+}
 
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) {
     if (nx < 1 || ny < 1 || nz < 1)
@@ -56,92 +58,125 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
     if (!(L0 > 0) || !std::isfinite(L0))
         throw std::invalid_argument("module size L0 must be positive (got " + std::to_string(L0) + " m)");
     m.validate();
-    const std::int64_t nodes = expectedNodeCount(nx, ny, nz);
-    if (nodes > std::int64_t(INT32_MAX)) throw std::invalid_argument("lattice too large for 32-bit node ids");
+    if (expectedBarCount(nx, ny, nz) > std::int64_t(INT32_MAX))
+        throw std::invalid_argument("lattice too large for 32-bit node ids");
 
     Lattice lat;
     lat.nx = nx, lat.ny = ny, lat.nz = nz, lat.L0 = L0;
-    lat.x0.resize(nodes), lat.y0.resize(nodes), lat.z0.resize(nodes);
-    lat.mass.assign(nodes, 0.0);
-    for (int k = 0; k <= nz; ++k)
-        for (int j = 0; j <= ny; ++j)
-            for (int i = 0; i <= nx; ++i) {
-                const auto id = lat.cornerId(i, j, k);
-                lat.x0[id] = i * L0, lat.y0[id] = j * L0, lat.z0[id] = k * L0;
-            }
+    lat.mass.assign(expectedNodeCount(nx, ny, nz), 0.0);
     const double moduleMass = m.rho * L0 * L0 * L0;
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
-                const auto c = lat.centreId(i, j, k);
-                lat.x0[c] = (i + 0.5) * L0, lat.y0[c] = (j + 0.5) * L0, lat.z0[c] = (k + 0.5) * L0;
-                lat.mass[c] += 0.5 * moduleMass;
-                for (int dk = 0; dk < 2; ++dk)
-                    for (int dj = 0; dj < 2; ++dj)
-                        for (int di = 0; di < 2; ++di)
-                            lat.mass[lat.cornerId(i + di, j + dj, k + dk)] += moduleMass / 16.0;
+                lat.mass[lat.centreId(i, j, k)] += 0.5 * moduleMass;
+                for (int c = 0; c < 8; ++c)
+                    lat.mass[lat.cornerId(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2))] += moduleMass / 16.0;
             }
 
+    lat.invMass.resize(lat.mass.size());
+    for (std::size_t i = 0; i < lat.mass.size(); ++i) lat.invMass[i] = 1.0 / lat.mass[i];
+
+    // Families.
     const double An = normalBarArea(m.nu, L0), Ad = diagonalBarArea(m.nu, L0);
     const double Afn = normalFractureArea(m.ca, L0), Afd = diagonalFractureArea(m.ca, L0);
     const int n[3] = {nx, ny, nz};
-    lat.n1.reserve(expectedBarCount(nx, ny, nz));
-    lat.n2.reserve(expectedBarCount(nx, ny, nz));
-    Builder build(lat);
+    auto add = [&](BarKind kind, NodeKind a, NodeKind b, std::array<int, 3> off, std::array<int, 3> box, int axis,
+                   std::array<double, 3> d0, double area, double Af) {
+        const double L = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
+        lat.families.push_back({kind, a, b, off, box, axis, d0, L, m.E * area, Af});
+    };
+    for (int a = 0; a < 3; ++a) {  // edges along axis a: corner -> corner + e_a
+        std::array<int, 3> off{0, 0, 0}, box{nx + 1, ny + 1, nz + 1};
+        std::array<double, 3> d0{0, 0, 0};
+        off[a] = 1, box[a] = n[a], d0[a] = L0;
+        add(BarKind::Edge, NodeKind::Corner, NodeKind::Corner, off, box, a, d0, An, Afn);
+    }
+    for (int a = 0; a < 3; ++a) {  // centre -> centre + e_a
+        std::array<int, 3> off{0, 0, 0}, box{nx, ny, nz};
+        std::array<double, 3> d0{0, 0, 0};
+        off[a] = 1, box[a] = n[a] - 1, d0[a] = L0;
+        add(BarKind::CentreCentre, NodeKind::Centre, NodeKind::Centre, off, box, -1, d0, An, Afn);
+    }
+    for (int c = 0; c < 8; ++c) {  // centre (i,j,k) -> corner (i+di, j+dj, k+dk)
+        const int di = c & 1, dj = c >> 1 & 1, dk = c >> 2;
+        add(BarKind::Diagonal, NodeKind::Centre, NodeKind::Corner, {di, dj, dk}, {nx, ny, nz}, -1,
+            {(di - 0.5) * L0, (dj - 0.5) * L0, (dk - 0.5) * L0}, Ad, Afd);
+    }
 
-    // Edge bars along axis a, one colour per parity of the index along a.
-    for (int a = 0; a < 3; ++a) {
-        std::array<double, 3> d0{0, 0, 0};
-        d0[a] = L0;
-        build.family(BarKind::Edge, d0, An, Afn, m.E);
-        for (int parity = 0; parity < 2; ++parity) {
-            build.colourBegin();
-            int e[3];
-            for (e[2] = 0; e[2] <= nz; ++e[2])
-                for (e[1] = 0; e[1] <= ny; ++e[1])
-                    for (e[0] = 0; e[0] <= nx; ++e[0]) {
-                        if (e[a] >= n[a] || (e[a] & 1) != parity) continue;
-                        int s = 1;  // modules sharing this edge: product over the two other axes
-                        for (int o = 0; o < 3; ++o)
-                            if (o != a) s *= modulesBeside(e[o], n[o]);
-                        int f[3] = {e[0], e[1], e[2]};
-                        ++f[a];
-                        build.bar(lat.cornerId(e[0], e[1], e[2]), lat.cornerId(f[0], f[1], f[2]), s / 4.0f);
-                    }
-            build.colourEnd();
-        }
+    // Rows of bars, sorted by layer (then family, then y), numbered in that order.
+    auto layerOf = [](NodeKind kind, int k) { return 2 * k + (kind == NodeKind::Centre ? 1 : 0); };
+    std::vector<std::tuple<int, int, int, int>> rows;  // (layer, family, q, r)
+    for (int f = 0; f < int(lat.families.size()); ++f) {
+        const BarFamily& fam = lat.families[f];
+        if (fam.box[0] == 0) continue;
+        for (int r = 0; r < fam.box[2]; ++r)
+            for (int q = 0; q < fam.box[1]; ++q)
+                rows.emplace_back(std::min(layerOf(fam.kindA, r), layerOf(fam.kindB, r + fam.offsetB[2])), f, q, r);
     }
-    // Centre-centre bars along axis a, one colour per parity.
-    for (int a = 0; a < 3; ++a) {
-        std::array<double, 3> d0{0, 0, 0};
-        d0[a] = L0;
-        build.family(BarKind::CentreCentre, d0, An, Afn, m.E);
-        for (int parity = 0; parity < 2; ++parity) {
-            build.colourBegin();
-            int c[3];
-            for (c[2] = 0; c[2] < nz; ++c[2])
-                for (c[1] = 0; c[1] < ny; ++c[1])
-                    for (c[0] = 0; c[0] < nx; ++c[0]) {
-                        if (c[a] + 1 >= n[a] || (c[a] & 1) != parity) continue;
-                        int f[3] = {c[0], c[1], c[2]};
-                        ++f[a];
-                        build.bar(lat.centreId(c[0], c[1], c[2]), lat.centreId(f[0], f[1], f[2]), 1.0f);
-                    }
-            build.colourEnd();
+    std::sort(rows.begin(), rows.end());
+    // rowFirst / rowLayer [f][q + box_y r]: a row's first bar (numbered within its layer) and its layer.
+    std::vector<std::vector<std::int64_t>> rowFirst(lat.families.size());
+    std::vector<std::vector<std::int32_t>> rowLayer(lat.families.size());
+    for (std::size_t f = 0; f < lat.families.size(); ++f)
+        rowFirst[f].assign(std::size_t(lat.families[f].box[1]) * lat.families[f].box[2], -1),
+            rowLayer[f].assign(rowFirst[f].size(), -1);
+    std::int64_t next = 0, layerFirst = 0;
+    int currentLayer = -1;
+    lat.barLayerStart.assign(lat.numLayers() + 1, 0);
+    for (const auto& [layer, f, q, r] : rows) {
+        const BarFamily& fam = lat.families[f];
+        if (layer != currentLayer) currentLayer = layer, layerFirst = next;
+        BarRow row;
+        row.first = next;
+        row.inLayer = std::int32_t(next - layerFirst);
+        row.nodeA = lat.nodeId(fam.kindA, 0, q, r);
+        row.nodeB = lat.nodeId(fam.kindB, fam.offsetB[0], q + fam.offsetB[1], r + fam.offsetB[2]);
+        row.count = fam.box[0];
+        row.family = std::uint8_t(f);
+        row.share = row.endShare = 1.0;
+        if (fam.kind == BarKind::Edge) {
+            // Interior of the row along x, then its two ends (they differ only
+            // for edges not along x, whose ends lie on the x faces).
+            row.endShare = edgeShare({0, q, r}, fam.axis, n);
+            row.share = nx >= 2 ? edgeShare({1, q, r}, fam.axis, n) : row.endShare;
         }
+        rowFirst[f][q + std::size_t(fam.box[1]) * r] = row.inLayer;
+        rowLayer[f][q + std::size_t(fam.box[1]) * r] = layer;
+        next += row.count;
+        lat.maxBarsInLayer = std::max(lat.maxBarsInLayer, std::int32_t(next - layerFirst));
+        lat.barRows.push_back(row);
+        ++lat.barLayerStart[layer + 1];
     }
-    // Diagonals: centre (i,j,k) -> corner (i+di, j+dj, k+dk); each family is one colour.
-    for (int dk = 0; dk < 2; ++dk)
-        for (int dj = 0; dj < 2; ++dj)
-            for (int di = 0; di < 2; ++di) {
-                build.family(BarKind::Diagonal, {(di - 0.5) * L0, (dj - 0.5) * L0, (dk - 0.5) * L0}, Ad, Afd, m.E);
-                build.colourBegin();
-                for (int k = 0; k < nz; ++k)
-                    for (int j = 0; j < ny; ++j)
-                        for (int i = 0; i < nx; ++i)
-                            build.bar(lat.centreId(i, j, k), lat.cornerId(i + di, j + dj, k + dk), 1.0f);
-                build.colourEnd();
+    for (int m = 0; m < lat.numLayers(); ++m) lat.barLayerStart[m + 1] += lat.barLayerStart[m];
+
+    // Rows of nodes, layer by layer, with the bars that meet them in family order.
+    lat.nodeLayerStart.assign(lat.numLayers() + 1, 0);
+    for (int m = 0; m < lat.numLayers(); ++m) {
+        const NodeKind kind = m % 2 ? NodeKind::Centre : NodeKind::Corner;
+        const int k = m / 2, cx = kind == NodeKind::Corner ? nx + 1 : nx, cy = kind == NodeKind::Corner ? ny + 1 : ny;
+        for (int j = 0; j < cy; ++j) {
+            NodeRow row;
+            row.first = lat.nodeId(kind, 0, j, k);
+            row.count = cx;
+            for (std::size_t f = 0; f < lat.families.size(); ++f) {
+                const BarFamily& fam = lat.families[f];
+                for (int end = 0; end < 2; ++end) {
+                    if ((end == 0 ? fam.kindA : fam.kindB) != kind) continue;
+                    const std::array<int, 3> o = end == 0 ? std::array<int, 3>{0, 0, 0} : fam.offsetB;
+                    const int q = j - o[1], r = k - o[2];
+                    if (q < 0 || q >= fam.box[1] || r < 0 || r >= fam.box[2]) continue;
+                    // node i meets bar p = i - o[0] of the row, valid for p in [0, box_x)
+                    const int begin = std::max(0, o[0]), stop = std::min(cx, fam.box[0] + o[0]);
+                    if (begin >= stop) continue;
+                    const std::size_t qr = q + std::size_t(fam.box[1]) * r;
+                    row.incidences.push_back({rowLayer[f][qr], std::int32_t(rowFirst[f][qr] - o[0]), begin, stop,
+                                              end == 0 ? 1.0 : -1.0});
+                }
             }
+            lat.nodeRows.push_back(std::move(row));
+        }
+        lat.nodeLayerStart[m + 1] = std::int32_t(lat.nodeRows.size());
+    }
     return lat;
 }
 

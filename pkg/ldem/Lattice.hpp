@@ -1,13 +1,20 @@
 // The cubic lattice with centre nodes (LDEM_SPEC section 1).
 //
-// Nodes: (nx+1)(ny+1)(nz+1) corner nodes, then nx ny nz centre nodes.
-// Bars are stored in structure-of-arrays form and grouped into 14 families
-// (3 edge directions, 3 centre-centre directions, 8 diagonals); every bar of a
-// family has the same reference vector, length, full area and fracture area,
-// so only the end nodes and the share k/4 of surface edge bars are per bar.
-// Families are split into "colours": contiguous bar ranges in which no two
-// bars share a node, so a colour can scatter forces in parallel without races
-// and every node sums its bars in the same order whatever the thread count.
+// Nodes: (nx+1)(ny+1)(nz+1) corner nodes (id = i + (nx+1)(j + (ny+1)k)), then
+// nx ny nz centre nodes. Node ids grow by one along x, so a row of nodes is a
+// contiguous range.
+//
+// Bars are never listed: the lattice is regular, so they form 14 families
+// (3 edge directions, 3 centre-centre directions, 8 diagonals), each a box of
+// bars indexed (p, q, r) that joins node A = (p, q, r) of one kind to node
+// B = (p, q, r) + offset of another. A row of bars (fixed q, r) joins two
+// contiguous rows of nodes, so the hot loops stream through plain arrays
+// with no index arrays at all (see InternalForces).
+//
+// Layers: node layer m = 2k is the corner plane z = k L0, m = 2k+1 the centre
+// plane z = (k + 1/2) L0. A bar belongs to the lower layer of its two ends.
+// Rows are stored layer by layer, and bars are numbered in that order, so the
+// bars of a few consecutive layers are close together in memory.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -18,45 +25,81 @@
 namespace ldem {
 
 enum class BarKind : unsigned char { Edge = 0, CentreCentre = 1, Diagonal = 2 };
+enum class NodeKind : unsigned char { Corner = 0, Centre = 1 };
 
 struct BarFamily {
     BarKind kind;
-    std::array<double, 3> d0;  // reference vector from first to second node [m]
-    double L;                  // initial length [m]
-    double EA;                 // axial stiffness of a full (interior) bar [N]
-    double Af;                 // fracture area of a full bar [m^2]
+    NodeKind kindA, kindB;
+    std::array<int, 3> offsetB;  // B = A's box index + offsetB, in B's node grid
+    std::array<int, 3> box;      // number of bars along x, y, z
+    int axis;                    // edge families: the bar's direction (0, 1, 2); else -1
+    std::array<double, 3> d0;    // reference vector A -> B [m]
+    double L;                    // initial length [m]
+    double EA;                   // axial stiffness of a full (interior) bar [N]
+    double Af;                   // fracture area of a full bar [m^2]
 };
 
-struct BarRange {
-    std::int64_t begin, end;
+// A row of bars of one family: bars first .. first+count-1 join nodes
+// nodeA+p and nodeB+p (p = 0 .. count-1).
+struct BarRow {
+    std::int64_t first;
+    std::int32_t inLayer;  // first - (number of the first bar of the row's layer)
+    std::int32_t nodeA, nodeB, count;
+    std::uint8_t family;
+    double share;     // k/4 of the row's bars (edge bars on the surface), 1 otherwise
+    double endShare;  // share of the row's first and last bar (surface edges along x ends)
+    double shareAt(int p) const { return (p == 0 || p == count - 1) ? endShare : share; }
+};
+
+// The bars meeting a row of nodes from one family: node first+i (i in [begin, end))
+// is end A (sign +1) or end B (sign -1) of the bar numbered inLayerAtZero + i
+// within bar layer `layer`.
+struct Incidence {
+    std::int32_t layer, inLayerAtZero, begin, end;
+    double sign;
+};
+
+struct NodeRow {
+    std::int32_t first, count;
+    std::vector<Incidence> incidences;  // in a fixed order: the summation order of a node's bars
 };
 
 struct Lattice {
     int nx = 0, ny = 0, nz = 0;
     double L0 = 0.0;
-
-    // Nodes, structure of arrays.
-    std::vector<double> x0, y0, z0;  // reference positions [m]
-    std::vector<double> mass;        // lumped masses [kg]
-
-    // Bars, structure of arrays.
-    std::vector<std::int32_t> n1, n2;  // end nodes; d0 of the family points n1 -> n2
-    std::vector<std::uint8_t> family;  // index into families
-    std::vector<float> share;          // k/4 for edge bars shared by k modules, else 1
-
+    std::vector<double> mass;     // lumped masses [kg]
+    std::vector<double> invMass;  // 1 / mass, for the integrator
     std::vector<BarFamily> families;
-    std::vector<BarRange> colours;
+    std::vector<BarRow> barRows;    // by layer; bar numbers increase along them
+    std::vector<NodeRow> nodeRows;  // by layer
+    std::vector<std::int32_t> barLayerStart, nodeLayerStart;  // rows of layer m: [start[m], start[m+1])
+    std::int32_t maxBarsInLayer = 0;
 
-    std::int64_t numNodes() const { return static_cast<std::int64_t>(mass.size()); }
-    std::int64_t numBars() const { return static_cast<std::int64_t>(n1.size()); }
+    std::int64_t numNodes() const { return std::int64_t(mass.size()); }
+    std::int64_t numBars() const { return barRows.back().first + barRows.back().count; }
+    int numLayers() const { return 2 * nz + 1; }
+    std::int32_t numCorners() const { return (nx + 1) * (ny + 1) * (nz + 1); }
     std::int32_t cornerId(int i, int j, int k) const { return i + (nx + 1) * (j + (ny + 1) * k); }
-    std::int32_t centreId(int i, int j, int k) const {
-        return (nx + 1) * (ny + 1) * (nz + 1) + i + nx * (j + ny * k);
+    std::int32_t centreId(int i, int j, int k) const { return numCorners() + i + nx * (j + ny * k); }
+    std::int32_t nodeId(NodeKind kind, int i, int j, int k) const {
+        return kind == NodeKind::Corner ? cornerId(i, j, k) : centreId(i, j, k);
     }
-    double barEA(std::int64_t b) const { return families[family[b]].EA * share[b]; }
-    double barAf(std::int64_t b) const { return families[family[b]].Af * share[b]; }
-    double barLength(std::int64_t b) const { return families[family[b]].L; }
+    std::array<double, 3> position(std::int32_t node) const;  // reference position [m]
+
+    // Per-bar query (not for hot loops): the row of a bar.
+    const BarRow& rowOf(std::int64_t bar) const;
 };
+
+// Calls fn(bar, nodeA, nodeB, row, p) for every bar (p: position in its row),
+// rows split between threads.
+template <class Fn>
+void forEachBar(const Lattice& lat, Fn fn) {
+#pragma omp parallel for schedule(static)
+    for (std::int64_t r = 0; r < std::int64_t(lat.barRows.size()); ++r) {
+        const BarRow& row = lat.barRows[r];
+        for (int p = 0; p < row.count; ++p) fn(row.first + p, row.nodeA + p, row.nodeB + p, row, p);
+    }
+}
 
 // Node and bar counts of an nx x ny x nz lattice (spec section 1).
 std::int64_t expectedNodeCount(int nx, int ny, int nz);

@@ -52,7 +52,7 @@ Constraints cubeTestConstraints(const Lattice& lat, const LoadingParams& p) {
                 prescribe(bottom, 1, 0.0);
             }
             // Upper face: triangular varies linearly in x from 0 to 1.
-            const double w = p.shape == LoadShape::Uniform ? 1.0 : lat.x0[top] / width;
+            const double w = p.shape == LoadShape::Uniform ? 1.0 : lat.position(top)[0] / width;
             weightSum += w;
             if (!p.topLateralFree) prescribe(top, 0, 0.0), prescribe(top, 1, 0.0);
             prescribe(top, 2, w);

@@ -80,6 +80,7 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         s.x[i] = (mask[i] & 1) ? 0 : r, s.y[i] = (mask[i] & 2) ? 0 : r, s.z[i] = (mask[i] & 4) ? 0 : r;
     }
     Field3 q(n), qPrev(n), w(n), tmp(n);
+    BarForceBuffers barWork;
     for (std::int64_t i = 0; i < n; ++i) {  // deterministic start vector
         q.x[i] = s.x[i] * (hashedUniform(7, i, 0) - 0.5);
         q.y[i] = s.y[i] * (hashedUniform(7, i, 1) - 0.5);
@@ -103,7 +104,7 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             tmp.x[i] = s.x[i] * q.x[i], tmp.y[i] = s.y[i] * q.y[i], tmp.z[i] = s.z[i] * q.z[i];
-        linearStiffnessProduct(lat, tmp, w);
+        linearStiffnessProduct(lat, tmp, barWork, w);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             w.x[i] = s.x[i] * w.x[i] - betaPrev * qPrev.x[i], w.y[i] = s.y[i] * w.y[i] - betaPrev * qPrev.y[i],

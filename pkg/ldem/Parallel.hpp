@@ -32,11 +32,28 @@ std::array<double, K> blockSum(std::int64_t n, Add add) {
     return total;
 }
 
+// threads <= 0: all the machine's cores (not whatever an earlier run set).
 inline void setThreads(int threads) {
 #ifdef _OPENMP
-    if (threads > 0) omp_set_num_threads(threads);
+    omp_set_num_threads(threads > 0 ? threads : omp_get_num_procs());
 #else
     (void)threads;
+#endif
+}
+
+inline int threadIndex() {
+#ifdef _OPENMP
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
+}
+
+inline int threadCount() {
+#ifdef _OPENMP
+    return omp_get_num_threads();
+#else
+    return 1;
 #endif
 }
 

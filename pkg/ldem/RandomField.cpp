@@ -59,8 +59,9 @@ std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, s
     const std::int64_t nb = lat.numBars();
     std::vector<double> gf(nb);
     if (m.corrLength <= 0) {
-#pragma omp parallel for schedule(static)
-        for (std::int64_t b = 0; b < nb; ++b) gf[b] = w.quantile(hashedUniform(seed, lat.n1[b], lat.n2[b]));
+        forEachBar(lat, [&](std::int64_t b, std::int32_t a, std::int32_t c, const BarRow&, int) {
+            gf[b] = w.quantile(hashedUniform(seed, a, c));
+        });
         return gf;
     }
     // Random Fourier modes: wave vectors k ~ N(0, sigma^2 I) with sigma^2 = 2 / l_c^2
@@ -76,17 +77,15 @@ std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, s
         phase[n] = 2 * kPi * hashedUniform(fieldSeed, n, 7);
     }
     const double amp = std::sqrt(2.0 / N);
-#pragma omp parallel for schedule(static)
-    for (std::int64_t b = 0; b < nb; ++b) {
-        const auto i = lat.n1[b], j = lat.n2[b];
-        const double x = 0.5 * (lat.x0[i] + lat.x0[j]), y = 0.5 * (lat.y0[i] + lat.y0[j]),
-                     z = 0.5 * (lat.z0[i] + lat.z0[j]);
+    forEachBar(lat, [&](std::int64_t b, std::int32_t nodeA, std::int32_t nodeB, const BarRow&, int) {
+        const auto pa = lat.position(nodeA), pb = lat.position(nodeB);
+        const double x = 0.5 * (pa[0] + pb[0]), y = 0.5 * (pa[1] + pb[1]), z = 0.5 * (pa[2] + pb[2]);
         double g = 0;
         for (int n = 0; n < N; ++n) g += std::cos(kx[n] * x + ky[n] * y + kz[n] * z + phase[n]);
         g *= amp;
         const double u = 0.5 * std::erfc(-g / std::sqrt(2.0));
         gf[b] = w.quantile(std::min(std::max(u, 1e-16), 1 - 1e-16));
-    }
+    });
     return gf;
 }
 

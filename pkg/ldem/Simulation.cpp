@@ -49,22 +49,35 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
         recordEvery_ = std::max(1, int(tFinal / dt_ / 2000));
     }
 
-    // Random G_f -> limit strain of each bar.
-    gf_ = ldem::fractureEnergyField(lat_, mat_, run_.seed);
+    // Random G_f -> limit strain of each bar (the field itself is not kept).
     bars_.epsP = mat_.epsP;
-    bars_.kappa.assign(lat_.numBars(), 0.0);
     bars_.epsR.resize(lat_.numBars());
-    for (std::int64_t b = 0; b < lat_.numBars(); ++b) {
-        const LimitStrain ls = limitStrain(lat_.barAf(b), gf_[b], lat_.barEA(b), mat_.epsP, lat_.barLength(b));
-        bars_.epsR[b] = ls.epsR;
-        clamped_ += ls.clamped;
+    {
+        const std::vector<double> gf = fractureEnergyField();
+        for (const BarRow& row : lat_.barRows) {
+            const BarFamily& fam = lat_.families[row.family];
+            for (int p = 0; p < row.count; ++p) {
+                const std::int64_t b = row.first + p;
+                const double share = row.shareAt(p);
+                const LimitStrain ls = limitStrain(fam.Af * share, gf[b], fam.EA * share, mat_.epsP, fam.L);
+                bars_.epsR[b] = ls.epsR;
+                clamped_ += ls.clamped;
+            }
+        }
     }
+    bars_.kappa.assign(lat_.numBars(), 0.0);
     u_ = v_ = f_ = Field3(lat_.numNodes());
+    cd_ = CentralDifference(dt_, Df_);
+    layerDamping_.assign(lat_.numLayers(), 0.0);
+}
+
+std::vector<double> Simulation::fractureEnergyField() const {
+    return ldem::fractureEnergyField(lat_, mat_, run_.seed);
 }
 
 double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
 
-void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, f_); }
+void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }
 
 CurvePoint Simulation::measure() const {
     CurvePoint p;
@@ -84,28 +97,33 @@ CurvePoint Simulation::measure() const {
     return p;
 }
 
+void Simulation::step() {
+    layeredForces(lat_, u_, g_, f_, HillerborgBars{bars_.kappa.data(), bars_.epsR.data(), bars_.epsP},
+                  [this](int m) { layerDamping_[m] = advanceNodes(m); });
+    finishStep();
+}
+
 void Simulation::advance() {
+#pragma omp parallel for schedule(static)
+    for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
+    finishStep();
+}
+
+void Simulation::finishStep() {
+    for (double d : layerDamping_) dampingWork_ += d;  // layer order: the same sum for any thread count
     // External work of the prescribed DOFs over the centred increment
     // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
     const double tNext = time_ + dt_;
     const double Unext = drive_.displacement(tNext), Unow = drive_.displacement(time_);
     const double centred = 0.5 * (Unext - drive_.displacement(time_ - dt_));
-    double work = 0;
-    for (std::size_t k = 0; k < con_.node.size(); ++k) {
-        if (con_.weight[k] == 0) continue;
-        const auto n = con_.node[k];
-        const double fn = con_.dim[k] == 0 ? f_.x[n] : con_.dim[k] == 1 ? f_.y[n] : f_.z[n];
-        work -= fn * con_.weight[k] * centred;
-    }
-    externalWork_ += work;
-    dampingWork_ += centralDifferenceStep(lat_.mass, con_.mask, f_, dt_, Df_, u_, v_);
     for (std::size_t k = 0; k < con_.node.size(); ++k) {
         const auto n = con_.node[k];
+        const int d = con_.dim[k];
         const double w = con_.weight[k];
-        double& u = con_.dim[k] == 0 ? u_.x[n] : con_.dim[k] == 1 ? u_.y[n] : u_.z[n];
-        double& v = con_.dim[k] == 0 ? v_.x[n] : con_.dim[k] == 1 ? v_.y[n] : v_.z[n];
-        u = w * Unext;
-        v = w * (Unext - Unow) / dt_;
+        std::vector<double>& fd = d == 0 ? f_.x : d == 1 ? f_.y : f_.z;
+        externalWork_ -= fd[n] * w * centred;
+        (d == 0 ? u_.x : d == 1 ? u_.y : u_.z)[n] = w * Unext;
+        (d == 0 ? v_.x : d == 1 ? v_.y : v_.z)[n] = w * (Unext - Unow) / dt_;
     }
     time_ = tNext;
     ++step_;
@@ -116,32 +134,35 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     RunSummary s;
     double maxWork = 0, maxResidual = 0;
     for (;;) {
-        computeForces();
-        if (step_ % recordEvery_ == 0) {
-            const CurvePoint p = measure();
-            const double total = p.kinetic + p.elastic + p.fracture + p.damping;
-            // Energy from nothing (kinetic above all the work put in) or NaN: the
-            // integration is unstable; stop before it writes garbage.
-            if (!std::isfinite(total) || !std::isfinite(p.stressBottom) ||
-                p.kinetic > 1.5 * p.externalWork + 1e-9 * (1 + maxWork)) {
-                std::ostringstream msg;
-                msg << "numerical instability at step " << step_ << " (t = " << time_ << " s): kinetic energy "
-                    << p.kinetic << " J against external work " << p.externalWork << " J; dt = " << dt_
-                    << " s, stability limit " << stableTimeStep(freq_.omegaMax) << " s";
-                throw InstabilityError(msg.str());
-            }
-            maxWork = std::max(maxWork, p.externalWork);
-            maxResidual = std::max(maxResidual, std::abs(p.balanceResidual()));
-            if (p.stressBottom > s.peakStress) s.peakStress = p.stressBottom, s.strainAtPeak = p.meanStrain;
-            s.fractureEnergy = p.fracture;
-            s.steps = step_;
-            const bool keepGoing = !observer || observer(p);
-            // Split: bars have broken and the stress has fallen below a fraction of its peak.
-            if (p.broken > 0 && p.stressBottom < run_.stopFraction * s.peakStress) s.stopReason = "split";
-            else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
-            else if (!keepGoing) s.stopReason = "stopped";
-            if (!s.stopReason.empty()) break;
+        if (step_ % recordEvery_ != 0) {
+            step();
+            continue;
         }
+        // A record step: forces, measure state n, then the rest of the step.
+        computeForces();
+        const CurvePoint p = measure();
+        const double total = p.kinetic + p.elastic + p.fracture + p.damping;
+        // Energy from nothing (kinetic above all the work put in) or NaN: the
+        // integration is unstable; stop before it writes garbage.
+        if (!std::isfinite(total) || !std::isfinite(p.stressBottom) ||
+            p.kinetic > 1.5 * p.externalWork + 1e-9 * (1 + maxWork)) {
+            std::ostringstream msg;
+            msg << "numerical instability at step " << step_ << " (t = " << time_ << " s): kinetic energy "
+                << p.kinetic << " J against external work " << p.externalWork << " J; dt = " << dt_
+                << " s, stability limit " << stableTimeStep(freq_.omegaMax) << " s";
+            throw InstabilityError(msg.str());
+        }
+        maxWork = std::max(maxWork, p.externalWork);
+        maxResidual = std::max(maxResidual, std::abs(p.balanceResidual()));
+        if (p.stressBottom > s.peakStress) s.peakStress = p.stressBottom, s.strainAtPeak = p.meanStrain;
+        s.fractureEnergy = p.fracture;
+        s.steps = step_;
+        const bool keepGoing = !observer || observer(p);
+        // Split: bars have broken and the stress has fallen below a fraction of its peak.
+        if (p.broken > 0 && p.stressBottom < run_.stopFraction * s.peakStress) s.stopReason = "split";
+        else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
+        else if (!keepGoing) s.stopReason = "stopped";
+        if (!s.stopReason.empty()) break;
         advance();
     }
     s.energyBalanceError = maxWork > 0 ? maxResidual / maxWork : 0.0;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "ldem/Integrator.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
@@ -64,21 +65,23 @@ public:
     // return false to stop), stops on split or final strain.
     RunSummary run(const std::function<bool(const CurvePoint&)>& observer = {});
 
-    // One step: forces at x(n), then x(n+1). measure() in between records state n.
+    // One step, forces at x(n) then x(n+1), in one pass over the lattice.
+    void step();
+    // The same step in two halves, to measure() state n in between; the
+    // arithmetic is the same, so both ways give bit-identical results.
     void computeForces();
     CurvePoint measure() const;
     void advance();
-    void step() { computeForces(), advance(); }
 
     // Sets dt without the stability check: for tests of the instability
     // detector and for studies of the stability limit itself.
-    void forceTimeStep(double dt) { dt_ = dt; }
+    void forceTimeStep(double dt) { dt_ = dt, cd_ = CentralDifference(dt_, Df_); }
 
     const Lattice& lattice() const { return lat_; }
     const Constraints& constraints() const { return con_; }
     const BarState& bars() const { return bars_; }
     const Field3& displacements() const { return u_; }
-    const std::vector<double>& fractureEnergyField() const { return gf_; }
+    std::vector<double> fractureEnergyField() const;  // G_f of every bar (recomputed from the seed)
     const Material& material() const { return mat_; }
     const LoadingParams& loading() const { return load_; }
     const RunParams& runParams() const { return run_; }
@@ -94,6 +97,8 @@ public:
 
 private:
     double meanStrainAt(double t) const { return drive_.displacement(t) * con_.meanTopWeight / con_.height; }
+    double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, con_.mask, f_, u_, v_); }
+    void finishStep();  // damping and external work, prescribed DOFs, clock
 
     Material mat_;
     LoadingParams load_;
@@ -102,10 +107,12 @@ private:
     Constraints con_;
     Frequencies freq_;
     Drive drive_;
-    std::vector<double> gf_;
     BarState bars_;
-    Field3 u_, v_, f_;
+    Field3 u_, v_, f_;  // per node
+    BarForceBuffers g_;  // bar forces of the layers in use
     double dt_ = 0, Df_ = 0, time_ = 0;
+    CentralDifference cd_{0, 0};
+    std::vector<double> layerDamping_;  // damping work of each node layer in the current step
     double externalWork_ = 0, dampingWork_ = 0;
     std::int64_t step_ = 0, clamped_ = 0;
     int recordEvery_ = 1;

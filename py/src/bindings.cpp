@@ -25,6 +25,25 @@ template <class T>
 py::array_t<T> toNumpy(const std::vector<T>& v) {
     return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
+
+// One value per bar, from fn(row, family, position in row, node A, node B).
+template <class T, class Fn>
+py::array_t<T> perBar(const Lattice& lat, Fn fn) {
+    py::array_t<T> a(py::ssize_t(lat.numBars()));
+    T* out = a.mutable_data();
+    forEachBar(lat, [&](std::int64_t b, std::int32_t na, std::int32_t nb, const BarRow& row, int p) {
+        out[b] = fn(row, lat.families[row.family], p, na, nb);
+    });
+    return a;
+}
+
+// Reference coordinate `axis` of every node.
+py::array_t<double> perNode(const Lattice& lat, int axis) {
+    py::array_t<double> a(py::ssize_t(lat.numNodes()));
+    double* out = a.mutable_data();
+    for (std::int32_t n = 0; n < lat.numNodes(); ++n) out[n] = lat.position(n)[axis];
+    return a;
+}
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -99,36 +118,39 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("L0", &Lattice::L0)
         .def_property_readonly("n_nodes", &Lattice::numNodes)
         .def_property_readonly("n_bars", &Lattice::numBars)
-        .def_property_readonly("x0", [](const Lattice& l) { return toNumpy(l.x0); })
-        .def_property_readonly("y0", [](const Lattice& l) { return toNumpy(l.y0); })
-        .def_property_readonly("z0", [](const Lattice& l) { return toNumpy(l.z0); })
+        .def_property_readonly("x0", [](const Lattice& l) { return perNode(l, 0); })
+        .def_property_readonly("y0", [](const Lattice& l) { return perNode(l, 1); })
+        .def_property_readonly("z0", [](const Lattice& l) { return perNode(l, 2); })
         .def_property_readonly("mass", [](const Lattice& l) { return toNumpy(l.mass); })
-        .def_property_readonly("n1", [](const Lattice& l) { return toNumpy(l.n1); })
-        .def_property_readonly("n2", [](const Lattice& l) { return toNumpy(l.n2); })
-        .def_property_readonly("share", [](const Lattice& l) { return toNumpy(l.share); })
-        .def_property_readonly("kind",
-                               [](const Lattice& l) {  // 0 edge, 1 centre-centre, 2 diagonal
-                                   std::vector<std::uint8_t> k(l.numBars());
-                                   for (std::int64_t b = 0; b < l.numBars(); ++b)
-                                       k[b] = std::uint8_t(l.families[l.family[b]].kind);
-                                   return toNumpy(k);
-                               })
-        .def_property_readonly("EA",
-                               [](const Lattice& l) {
-                                   std::vector<double> v(l.numBars());
-                                   for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barEA(b);
-                                   return toNumpy(v);
-                               })
-        .def_property_readonly("Af",
-                               [](const Lattice& l) {
-                                   std::vector<double> v(l.numBars());
-                                   for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barAf(b);
-                                   return toNumpy(v);
-                               })
+        .def_property_readonly("n1", [](const Lattice& l) {
+            return perBar<std::int32_t>(l, [](const BarRow&, const BarFamily&, int, std::int32_t a, std::int32_t) { return a; });
+        })
+        .def_property_readonly("n2", [](const Lattice& l) {
+            return perBar<std::int32_t>(l, [](const BarRow&, const BarFamily&, int, std::int32_t, std::int32_t b) { return b; });
+        })
+        .def_property_readonly("share", [](const Lattice& l) {
+            return perBar<double>(l, [](const BarRow& r, const BarFamily&, int p, std::int32_t, std::int32_t) { return r.shareAt(p); });
+        })
+        .def_property_readonly("kind", [](const Lattice& l) {  // 0 edge, 1 centre-centre, 2 diagonal
+            return perBar<std::uint8_t>(l, [](const BarRow&, const BarFamily& f, int, std::int32_t, std::int32_t) {
+                return std::uint8_t(f.kind);
+            });
+        })
+        .def_property_readonly("family", [](const Lattice& l) {
+            return perBar<std::uint8_t>(l, [](const BarRow& r, const BarFamily&, int, std::int32_t, std::int32_t) { return r.family; });
+        })
+        .def_property_readonly("EA", [](const Lattice& l) {
+            return perBar<double>(l, [](const BarRow& r, const BarFamily& f, int p, std::int32_t, std::int32_t) {
+                return f.EA * r.shareAt(p);
+            });
+        })
+        .def_property_readonly("Af", [](const Lattice& l) {
+            return perBar<double>(l, [](const BarRow& r, const BarFamily& f, int p, std::int32_t, std::int32_t) {
+                return f.Af * r.shareAt(p);
+            });
+        })
         .def_property_readonly("length", [](const Lattice& l) {
-            std::vector<double> v(l.numBars());
-            for (std::int64_t b = 0; b < l.numBars(); ++b) v[b] = l.barLength(b);
-            return toNumpy(v);
+            return perBar<double>(l, [](const BarRow&, const BarFamily& f, int, std::int32_t, std::int32_t) { return f.L; });
         });
     m.def("build_cubic_lattice", &buildCubicLattice, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"),
           py::arg("material"));

@@ -1,0 +1,86 @@
+// ldem-bench: time the whole time step of an N^3 cube (default material,
+// uniform loading) and print one line of JSON. `ldem bench` runs it; it is a
+// separate program so that its peak resident memory is the run's own, with
+// no interpreter around it.
+//
+//   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5]
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "ldem/Parallel.hpp"
+#include "ldem/Simulation.hpp"
+
+namespace {
+double seconds(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+double median(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    const std::size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+[[noreturn]] void usage(const char* msg) {
+    std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R]\n", msg);
+    std::exit(2);
+}
+}  // namespace
+
+int main(int argc, char** argv) {
+    int modules = 24, steps = 200, threads = 0, repeats = 5;
+    for (int a = 1; a < argc; ++a) {
+        const std::string key = argv[a];
+        if (a + 1 >= argc) usage(("missing value after " + key).c_str());
+        const int value = std::atoi(argv[++a]);
+        if (key == "--modules") modules = value;
+        else if (key == "--steps") steps = value;
+        else if (key == "--threads") threads = value;
+        else if (key == "--repeats") repeats = value;
+        else usage(("unknown option " + key).c_str());
+    }
+    if (modules < 1 || steps < 1 || threads < 0 || repeats < 1) usage("values must be positive");
+
+    ldem::RunParams run;
+    run.threads = threads;
+    const auto t0 = std::chrono::steady_clock::now();
+    ldem::Simulation sim(modules, modules, modules, 0.02, ldem::Material{}, ldem::LoadingParams{}, run);
+    const double setup = seconds(t0);
+
+    // Each repetition: `steps` whole steps (bar pass, node pass, integration,
+    // boundary conditions, work and damping bookkeeping), plus the two halves
+    // timed apart on a few extra steps.
+    std::vector<double> perStep, forces, advance;
+    for (int r = 0; r < repeats; ++r) {
+        auto t = std::chrono::steady_clock::now();
+        for (int s = 0; s < steps; ++s) sim.step();
+        perStep.push_back(seconds(t) / steps);
+        double tf = 0, ta = 0;
+        for (int s = 0; s < 10; ++s) {
+            t = std::chrono::steady_clock::now();
+            sim.computeForces();
+            tf += seconds(t);
+            t = std::chrono::steady_clock::now();
+            sim.advance();
+            ta += seconds(t);
+        }
+        forces.push_back(tf / 10), advance.push_back(ta / 10);
+    }
+    rusage ru{};
+    getrusage(RUSAGE_SELF, &ru);
+    const double bars = double(sim.lattice().numBars());
+    const long rss = ru.ru_maxrss * 1024L;
+    std::printf(
+        "{\"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
+        "\"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, \"ns_per_bar_integration\": %.4f, "
+        "\"setup_s\": %.3f, \"peak_rss_bytes\": %ld, \"bytes_per_bar\": %.2f}\n",
+        modules, (long long)sim.lattice().numBars(), (long long)sim.lattice().numNodes(), steps, repeats,
+        ldem::maxThreads(), median(perStep) / bars * 1e9, median(forces) / bars * 1e9,
+        median(advance) / bars * 1e9, setup, rss, rss / bars);
+    return 0;
+}
