@@ -13,26 +13,13 @@ Prints one line
 Run: yade-double -n -x scripts/yade_crosscheck.py [OUT] [--strain-rate R] [--final-strain E] [--seed S]
 """
 import argparse
-import inspect
 import os
 import sys
 import time
 
-# yade -x runs the script with exec: __file__ is yade's own executable there.
-HERE = os.path.dirname(os.path.abspath(inspect.getframeinfo(inspect.currentframe()).filename))
-BUILD_PY = os.path.abspath(os.path.join(HERE, "..", "build", "python"))
-SRC_PY = os.path.abspath(os.path.join(HERE, "..", "py", "ldem"))
-if os.path.isdir(BUILD_PY):
-    sys.path.insert(0, BUILD_PY)
-
-import ldem  # noqa: E402
-
-# The pure-Python modules of this checkout first (the build tree's staged copy
-# may be older), the compiled _core from the build tree.
-if os.path.isdir(SRC_PY) and SRC_PY not in ldem.__path__:
-    ldem.__path__.insert(0, SRC_PY)
-import ldem.yade as ly  # noqa: E402
-from ldem import _core  # noqa: E402
+# ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
+import ldem.yade as ly
+from ldem import _core
 
 PEAK_TOL, STRAIN_TOL = 0.02, 0.05
 
@@ -92,7 +79,7 @@ def main(argv):
 
     t0 = time.time()
     fresh = _core.Simulation(n, n, n, a.L0, _core.Material(), lp, rp)  # the same specimen, unrun
-    spec = ly.CubeSpecimen(fresh, lp, damping=0.0)
+    spec = ly.CubeSpecimen(fresh, damping=0.0)
     res = spec.run(final_strain=a.final_strain, stop_fraction=rp.stop_fraction)
     t_yade = time.time() - t0
     strain_check = spec.guard.verify()

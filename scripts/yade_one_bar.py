@@ -45,26 +45,13 @@ O(1e-3..1).
 
 Run: yade-double -n -x scripts/yade_one_bar.py
 """
-import inspect
 import math
 import os
 import sys
 
-# yade -x runs the script with exec: __file__ is yade's own executable there.
-HERE = os.path.dirname(os.path.abspath(inspect.getframeinfo(inspect.currentframe()).filename))
-BUILD_PY = os.path.abspath(os.path.join(HERE, "..", "build", "python"))
-SRC_PY = os.path.abspath(os.path.join(HERE, "..", "py", "ldem"))
-if os.path.isdir(BUILD_PY):
-    sys.path.insert(0, BUILD_PY)
-
-import ldem  # noqa: E402
-
-# The pure-Python modules of this checkout first (the build tree's staged copy
-# may be older), the compiled _core from the build tree.
-if os.path.isdir(SRC_PY) and SRC_PY not in ldem.__path__:
-    ldem.__path__.insert(0, SRC_PY)
-import ldem.yade as ly  # noqa: E402
-from ldem import _core  # noqa: E402
+# ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
+import ldem.yade as ly
+from ldem import _core
 
 TOL = 1e-12
 SEGMENT_STEPS = 40

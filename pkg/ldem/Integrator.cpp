@@ -17,19 +17,27 @@ inline double advanceDof(bool held, double m, double invM, double f, const Centr
 }
 }  // namespace
 
+double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
+                    const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
+                    const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
+    double damping = 0.0;
+#pragma omp simd reduction(+ : damping)
+    for (std::int32_t i = first; i < end; ++i) {
+        const unsigned h = mask[i];
+        const double m = mass[i], invM = invMass[i];
+        damping += advanceDof(h & 1, m, invM, f.x[i], cd, u.x[i], v.x[i]) +
+                   advanceDof(h & 2, m, invM, f.y[i], cd, u.y[i], v.y[i]) +
+                   advanceDof(h & 4, m, invM, f.z[i], cd, u.z[i], v.z[i]);
+    }
+    return damping;
+}
+
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
                     const Field3& f, Field3& u, Field3& v) {
     double damping = 0.0;
     for (std::int32_t r = lat.nodeLayerStart[m]; r < lat.nodeLayerStart[m + 1]; ++r) {
-        const std::int32_t first = lat.nodeRows[r].first, end = first + lat.nodeRows[r].count;
-#pragma omp simd reduction(+ : damping)
-        for (std::int32_t i = first; i < end; ++i) {
-            const unsigned h = mask[i];
-            const double mi = lat.mass[i], invM = lat.invMass[i];
-            damping += advanceDof(h & 1, mi, invM, f.x[i], cd, u.x[i], v.x[i]) +
-                       advanceDof(h & 2, mi, invM, f.y[i], cd, u.y[i], v.y[i]) +
-                       advanceDof(h & 4, mi, invM, f.z[i], cd, u.z[i], v.z[i]);
-        }
+        const NodeRow& row = lat.nodeRows[r];
+        damping += advanceNodes(row.first, row.first + row.count, lat.mass, lat.invMass, mask, cd, f, u, v);
     }
     return damping;
 }

@@ -28,6 +28,12 @@ struct CentralDifference {
         : dt(dt_), Df(Df_), a((1 - 0.5 * Df_ * dt_) / (1 + 0.5 * Df_ * dt_)), b(dt_ / (1 + 0.5 * Df_ * dt_)) {}
 };
 
+// Advances every DOF of nodes [first, end) whose bit is not set in mask;
+// returns the damping work (see advanceLayer).
+double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
+                    const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
+                    const CentralDifference& cd, const Field3& f, Field3& u, Field3& v);
+
 // Advances every DOF of the nodes of layer m whose bit is not set in mask;
 // returns the work of the damping forces over the step, sum D_f m vbar^2 dt
 // with vbar the mean of v(n-1/2) and v(n+1/2). This choice makes the discrete

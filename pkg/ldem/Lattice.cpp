@@ -52,6 +52,29 @@ const BarRow& Lattice::rowOf(std::int64_t bar) const {
     return *(it - 1);
 }
 
+BarTable listBars(const Lattice& lat) {
+    BarTable t;
+    const std::size_t n = std::size_t(lat.numBars());
+    t.n1.resize(n), t.n2.resize(n), t.family.resize(n), t.share.resize(n), t.EA.resize(n), t.Af.resize(n),
+        t.L.resize(n);
+    forEachBar(lat, [&](std::int64_t b, std::int32_t a, std::int32_t c, const BarRow& row, int p) {
+        const BarFamily& fam = lat.families[row.family];
+        t.n1[b] = a, t.n2[b] = c, t.family[b] = row.family, t.share[b] = row.shareAt(p);
+        t.EA[b] = fam.EA * t.share[b], t.Af[b] = fam.Af * t.share[b], t.L[b] = fam.L;
+    });
+    return t;
+}
+
+std::array<std::vector<double>, 3> nodePositions(const Lattice& lat) {
+    std::array<std::vector<double>, 3> x;
+    for (auto& c : x) c.resize(lat.numNodes());
+    for (std::int32_t n = 0; n < lat.numNodes(); ++n) {
+        const auto p = lat.position(n);
+        x[0][n] = p[0], x[1][n] = p[1], x[2][n] = p[2];
+    }
+    return x;
+}
+
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) {
     if (nx < 1 || ny < 1 || nz < 1)
         throw std::invalid_argument("a lattice needs at least one module per direction");

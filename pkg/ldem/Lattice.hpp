@@ -101,6 +101,18 @@ void forEachBar(const Lattice& lat, Fn fn) {
     }
 }
 
+// Every bar listed explicitly, by bar number: for output, tests and the YADE
+// bridge (the hot loops never use it).
+struct BarTable {
+    std::vector<std::int32_t> n1, n2;  // nodes A and B
+    std::vector<std::uint8_t> family;
+    std::vector<double> share, EA, Af, L;  // share k/4 (or 1), stiffness [N], fracture area [m^2], length [m]
+};
+BarTable listBars(const Lattice& lat);
+
+// Reference coordinates of every node [m].
+std::array<std::vector<double>, 3> nodePositions(const Lattice& lat);
+
 // Node and bar counts of an nx x ny x nz lattice (spec section 1).
 std::int64_t expectedNodeCount(int nx, int ny, int nz);
 std::int64_t expectedBarCount(int nx, int ny, int nz);

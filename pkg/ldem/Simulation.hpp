@@ -90,6 +90,7 @@ public:
     double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
     double dampingCoefficient() const { return Df_; }
     double rampTime() const { return drive_.rampTime; }
+    const Drive& drive() const { return drive_; }
     std::int64_t clampedBars() const { return clamped_; }
     std::int64_t stepCount() const { return step_; }
     int recordEvery() const { return recordEvery_; }

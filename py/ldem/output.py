@@ -66,9 +66,10 @@ def write_vtu(sim, path: str) -> None:
 
     lat = sim.lattice
     u = sim.displacement
+    bars = lat.bar_table()
     points = np.column_stack([lat.x0, lat.y0, lat.z0]) + u
     kappa, eps_r = sim.kappa, sim.eps_r
-    cells = [("line", np.column_stack([lat.n1, lat.n2]).astype(np.int64))]
+    cells = [("line", np.column_stack([bars["n1"], bars["n2"]]).astype(np.int64))]
     mesh = meshio.Mesh(
         points, cells,
         point_data={"displacement": u},
@@ -79,7 +80,7 @@ def write_vtu(sim, path: str) -> None:
             "eps_r": [eps_r],
             "strain": [sim.bar_strain],
             "G_f": [sim.fracture_energy_field],
-            "kind": [lat.kind.astype(np.int32)],
+            "kind": [bars["kind"].astype(np.int32)],
         })
     meshio.write(path, mesh, file_format="vtu")
 

@@ -50,12 +50,14 @@ def central_slice(sim, axis: int = 1):
     """Bars whose both ends lie within L0/2 of the mid-plane normal to axis (y by
     default), projected on the two other axes: (segments, damage states)."""
     lat = sim.lattice
+    bars = lat.bar_table()
+    n1, n2 = bars["n1"], bars["n2"]
     x = np.column_stack([lat.x0, lat.y0, lat.z0])
     mid = 0.5 * (x[:, axis].min() + x[:, axis].max())
     near = np.abs(x[:, axis] - mid) <= 0.5 * lat.L0 + 1e-12
-    keep = near[lat.n1] & near[lat.n2]
+    keep = near[n1] & near[n2]
     plane = [a for a in range(3) if a != axis]
-    seg = np.stack([x[lat.n1[keep]][:, plane], x[lat.n2[keep]][:, plane]], axis=1)
+    seg = np.stack([x[n1[keep]][:, plane], x[n2[keep]][:, plane]], axis=1)
     return seg, damage_states(sim.kappa[keep], sim.eps_p, sim.eps_r[keep])
 
 

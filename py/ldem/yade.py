@@ -113,22 +113,12 @@ import math
 
 import numpy as np
 
-PI = 3.14159265358979323846
 
 # epsCrackOnset given to a ruptured bar: omega = 1 - 1e-300/kappa == 1.0 exactly.
 BROKEN_ONSET = 1e-300
 # A bar is switched to "ruptured" once its strain reaches eps_r (1 - GUARD_MARGIN);
 # 0 because the guard's strain is bit-identical to the law's (see RuptureGuard).
 GUARD_MARGIN = 0.0
-
-
-def drive_displacement(t, v0, ramp_time):
-    """ldem's Drive::displacement (pkg/ldem/Loading.cpp): smooth start, then v0 t."""
-    if t <= 0:
-        return 0.0
-    if t < ramp_time:
-        return 0.5 * v0 * (t - ramp_time / PI * math.sin(PI * t / ramp_time))
-    return v0 * (t - 0.5 * ramp_time)
 
 
 def hillerborg_force(eps, kappa, EA, eps_p, eps_r):
@@ -309,36 +299,25 @@ class RuptureGuard:
         return int(damaged.sum()), int(broken.sum())
 
 
-def cube_constraints(sim, loading):
-    """ldem's cubeTestConstraints rebuilt from the lattice: per node a YADE
-    blockedDOFs string (translations) and the drive weight of the upper nodes."""
-    lat = sim.lattice
-    L0, nx = lat.L0, lat.nx
-    x0, y0 = np.asarray(lat.x0), np.asarray(lat.y0)
-    held = [""] * lat.n_nodes
-    bottom, top = np.asarray(sim.bottom_nodes), np.asarray(sim.top_nodes)
-    for n in bottom:
-        i, j = int(round(x0[n] / L0)), int(round(y0[n] / L0))
-        pin = (i == 0 and j == 0) or (i == nx and j == 0)
-        h = "z"
-        if not loading.bottom_lateral_free or pin:
-            if not loading.bottom_lateral_free or i == 0:
-                h += "x"
-            h += "y"
-        held[n] = h
-    width = nx * L0
-    weights = np.array([1.0 if loading.shape == "uniform" else x0[n] / width for n in top])
-    for n in top:
-        held[n] = "z" if loading.top_lateral_free else "xyz"
-    return held, weights
+def cube_constraints(sim):
+    """ldem's prescribed DOFs (Simulation.prescribed_dofs) in YADE's terms: per
+    node a blockedDOFs string (translations), and the drive weight of each upper node."""
+    dofs = sim.prescribed_dofs()
+    held = [""] * sim.lattice.n_nodes
+    weight = {}
+    for n, d, w in zip(dofs["node"], dofs["dim"], dofs["weight"]):
+        held[int(n)] += "xyz"[int(d)]
+        if d == 2:
+            weight[int(n)] = float(w)
+    return held, np.array([weight[int(n)] for n in sim.top_nodes])
 
 
 class CubeSpecimen:
-    """The ldem specimen ``sim`` (an ldem._core.Simulation, built with LoadingParams
-    ``loading``) rebuilt in YADE's O: same nodes, masses, bars, per-bar eps_r (from
-    the same seed, read from sim.eps_r), boundary conditions, drive U(t) and dt."""
+    """The ldem specimen ``sim`` (an ldem._core.Simulation) rebuilt in YADE's O:
+    same nodes, masses, bars, per-bar eps_r (from the same seed, read from
+    sim.eps_r), boundary conditions, drive U(t) and dt."""
 
-    def __init__(self, sim, loading, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
+    def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
         if sim.steps != 0:
             raise ValueError("CubeSpecimen needs an ldem Simulation that has not run yet (its initial state)")
         y = _yade()
@@ -346,13 +325,11 @@ class CubeSpecimen:
         if reset:
             O.reset()
         lat = sim.lattice
-        self.sim, self.loading = sim, loading
+        self.sim = sim
         self.height, self.face_area = sim.height, sim.face_area
-        self.v0 = loading.strain_rate * sim.height
-        self.ramp_time = sim.ramp_time
         self.dt = sim.dt
         self.radius = radius_factor * lat.L0
-        held, self.top_weights = cube_constraints(sim, loading)
+        held, self.top_weights = cube_constraints(sim)
         self.mean_top_weight = float(self.top_weights.mean())
         self.bottom = [int(n) for n in sim.bottom_nodes]
         self.top = [int(n) for n in sim.top_nodes]
@@ -372,7 +349,8 @@ class CubeSpecimen:
             assert bid == n
         self.z0_top = z0[self.top]
         self.z0_top_mean = float(np.mean(self.z0_top))
-        self.bars = CpmBars(lat.n1, lat.n2, lat.EA, lat.length, sim.eps_p, sim.eps_r, self.radius)
+        table = lat.bar_table()
+        self.bars = CpmBars(table["n1"], table["n2"], table["EA"], table["length"], sim.eps_p, sim.eps_r, self.radius)
         self.states = [b.state for b in O.bodies]
         self.top_states = [self.states[n] for n in self.top]
         self.guard = RuptureGuard(self.bars, self.states)
@@ -385,8 +363,7 @@ class CubeSpecimen:
     def _before_forces(self):
         O = self.O
         t, dt = O.time, O.dt
-        U, Unext = drive_displacement(t, self.v0, self.ramp_time), drive_displacement(t + dt, self.v0,
-                                                                                        self.ramp_time)
+        U, Unext = self.sim.drive_displacement(t), self.sim.drive_displacement(t + dt)
         for s, z0, w in zip(self.top_states, self.z0_top, self.top_weights):
             p, v = s.pos, s.vel
             s.pos = type(p)(p[0], p[1], z0 + w * U)
@@ -426,7 +403,8 @@ class CubeSpecimen:
         self.final_strain, self.stop_fraction, self.callback = final_strain, stop_fraction, callback
         self.stop_reason = ""
         if max_steps is None:  # time to the final strain + ramp, with margin
-            t_final = final_strain * self.height / (self.v0 * self.mean_top_weight) + 0.5 * self.ramp_time
+            v0 = self.sim.loading.strain_rate * self.height
+            t_final = final_strain * self.height / (v0 * self.mean_top_weight) + 0.5 * self.sim.ramp_time
             max_steps = int(1.2 * t_final / self.dt) + 10
         self.O.run(int(max_steps), True)
         if not self.stop_reason:

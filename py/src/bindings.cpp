@@ -26,24 +26,6 @@ py::array_t<T> toNumpy(const std::vector<T>& v) {
     return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
-// One value per bar, from fn(row, family, position in row, node A, node B).
-template <class T, class Fn>
-py::array_t<T> perBar(const Lattice& lat, Fn fn) {
-    py::array_t<T> a(py::ssize_t(lat.numBars()));
-    T* out = a.mutable_data();
-    forEachBar(lat, [&](std::int64_t b, std::int32_t na, std::int32_t nb, const BarRow& row, int p) {
-        out[b] = fn(row, lat.families[row.family], p, na, nb);
-    });
-    return a;
-}
-
-// Reference coordinate `axis` of every node.
-py::array_t<double> perNode(const Lattice& lat, int axis) {
-    py::array_t<double> a(py::ssize_t(lat.numNodes()));
-    double* out = a.mutable_data();
-    for (std::int32_t n = 0; n < lat.numNodes(); ++n) out[n] = lat.position(n)[axis];
-    return a;
-}
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -118,39 +100,19 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("L0", &Lattice::L0)
         .def_property_readonly("n_nodes", &Lattice::numNodes)
         .def_property_readonly("n_bars", &Lattice::numBars)
-        .def_property_readonly("x0", [](const Lattice& l) { return perNode(l, 0); })
-        .def_property_readonly("y0", [](const Lattice& l) { return perNode(l, 1); })
-        .def_property_readonly("z0", [](const Lattice& l) { return perNode(l, 2); })
+        .def_property_readonly("x0", [](const Lattice& l) { return toNumpy(nodePositions(l)[0]); })
+        .def_property_readonly("y0", [](const Lattice& l) { return toNumpy(nodePositions(l)[1]); })
+        .def_property_readonly("z0", [](const Lattice& l) { return toNumpy(nodePositions(l)[2]); })
         .def_property_readonly("mass", [](const Lattice& l) { return toNumpy(l.mass); })
-        .def_property_readonly("n1", [](const Lattice& l) {
-            return perBar<std::int32_t>(l, [](const BarRow&, const BarFamily&, int, std::int32_t a, std::int32_t) { return a; });
-        })
-        .def_property_readonly("n2", [](const Lattice& l) {
-            return perBar<std::int32_t>(l, [](const BarRow&, const BarFamily&, int, std::int32_t, std::int32_t b) { return b; });
-        })
-        .def_property_readonly("share", [](const Lattice& l) {
-            return perBar<double>(l, [](const BarRow& r, const BarFamily&, int p, std::int32_t, std::int32_t) { return r.shareAt(p); });
-        })
-        .def_property_readonly("kind", [](const Lattice& l) {  // 0 edge, 1 centre-centre, 2 diagonal
-            return perBar<std::uint8_t>(l, [](const BarRow&, const BarFamily& f, int, std::int32_t, std::int32_t) {
-                return std::uint8_t(f.kind);
-            });
-        })
-        .def_property_readonly("family", [](const Lattice& l) {
-            return perBar<std::uint8_t>(l, [](const BarRow& r, const BarFamily&, int, std::int32_t, std::int32_t) { return r.family; });
-        })
-        .def_property_readonly("EA", [](const Lattice& l) {
-            return perBar<double>(l, [](const BarRow& r, const BarFamily& f, int p, std::int32_t, std::int32_t) {
-                return f.EA * r.shareAt(p);
-            });
-        })
-        .def_property_readonly("Af", [](const Lattice& l) {
-            return perBar<double>(l, [](const BarRow& r, const BarFamily& f, int p, std::int32_t, std::int32_t) {
-                return f.Af * r.shareAt(p);
-            });
-        })
-        .def_property_readonly("length", [](const Lattice& l) {
-            return perBar<double>(l, [](const BarRow&, const BarFamily& f, int, std::int32_t, std::int32_t) { return f.L; });
+        .def("bar_table", [](const Lattice& l) {  // every bar listed explicitly, as numpy arrays
+            BarTable t = listBars(l);
+            std::vector<std::uint8_t> kind(t.family.size());
+            for (std::size_t b = 0; b < kind.size(); ++b) kind[b] = std::uint8_t(l.families[t.family[b]].kind);
+            py::dict d;
+            d["n1"] = toNumpy(t.n1), d["n2"] = toNumpy(t.n2), d["family"] = toNumpy(t.family);
+            d["kind"] = toNumpy(kind);  // 0 edge, 1 centre-centre, 2 diagonal
+            d["share"] = toNumpy(t.share), d["EA"] = toNumpy(t.EA), d["Af"] = toNumpy(t.Af), d["length"] = toNumpy(t.L);
+            return d;
         });
     m.def("build_cubic_lattice", &buildCubicLattice, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"),
           py::arg("material"));
@@ -211,6 +173,16 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
         .def_property_readonly("ramp_time", &Simulation::rampTime)
+        .def_property_readonly("loading", &Simulation::loading)
+        .def("drive_displacement", [](const Simulation& s, double t) { return s.drive().displacement(t); },
+             py::arg("t"), "U(t): the prescribed displacement of the most-pulled upper node [m]")
+        .def("prescribed_dofs",
+             [](const Simulation& s) {  // u[node][dim] = weight * U(t)
+                 const Constraints& c = s.constraints();
+                 py::dict d;
+                 d["node"] = toNumpy(c.node), d["dim"] = toNumpy(c.dim), d["weight"] = toNumpy(c.weight);
+                 return d;
+             })
         .def_property_readonly("clamped_bars", &Simulation::clampedBars)
         .def_property_readonly("steps", &Simulation::stepCount)
         .def_property_readonly("record_every", &Simulation::recordEvery)

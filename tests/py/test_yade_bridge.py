@@ -20,8 +20,9 @@ def yade():
 
 
 def run_yade(exe, script, *args, cwd):
+    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "build", "python"))
     return subprocess.run([exe, "-n", "-x", os.path.join(ROOT, "scripts", script), *args], capture_output=True,
-                          text=True, cwd=cwd, timeout=900)
+                          text=True, cwd=cwd, timeout=900, env=env)
 
 
 def test_one_bar_law_matches_ldem(yade, tmp_path):
