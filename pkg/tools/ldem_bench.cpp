@@ -4,8 +4,6 @@
 // no interpreter around it.
 //
 //   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5]
-#include <sys/resource.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -26,6 +24,18 @@ double median(std::vector<double> v) {
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+// Peak resident memory of this process [bytes]: VmHWM, which starts afresh at
+// exec (getrusage's ru_maxrss would carry over the launching interpreter's).
+long peakResidentBytes() {
+    std::FILE* f = std::fopen("/proc/self/status", "r");
+    char line[256];
+    long kb = -1;
+    while (f && std::fgets(line, sizeof line, f))
+        if (std::sscanf(line, "VmHWM: %ld kB", &kb) == 1) break;
+    if (f) std::fclose(f);
+    return kb * 1024;
+}
+
 [[noreturn]] void usage(const char* msg) {
     std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R]\n", msg);
     std::exit(2);
@@ -71,10 +81,8 @@ int main(int argc, char** argv) {
         }
         forces.push_back(tf / 10), advance.push_back(ta / 10);
     }
-    rusage ru{};
-    getrusage(RUSAGE_SELF, &ru);
     const double bars = double(sim.lattice().numBars());
-    const long rss = ru.ru_maxrss * 1024L;
+    const long rss = peakResidentBytes();
     std::printf(
         "{\"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
         "\"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, \"ns_per_bar_integration\": %.4f, "

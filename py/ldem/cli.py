@@ -5,6 +5,8 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
+import shutil
+import subprocess
 import sys
 
 EXIT_BAD_INPUT = 2
@@ -59,6 +61,28 @@ def cmd_cube(args) -> int:
     return 0
 
 
+def bench_program() -> str:
+    """The ldem-bench program: beside the installed package's command, or in the build tree."""
+    here = os.path.dirname(os.path.abspath(__file__))
+    for candidate in (os.path.join(here, "..", "..", "pkg", "ldem-bench"), shutil.which("ldem-bench")):
+        if candidate and os.access(candidate, os.X_OK):
+            return candidate
+    raise ValueError("ldem-bench not found: run install.sh (it builds and installs it)")
+
+
+def cmd_bench(args) -> int:
+    """One line of JSON from ldem-bench (a separate program, so that its peak
+    resident memory is the run's own and no interpreter is counted)."""
+    for name in ("modules", "steps", "repeats"):
+        if getattr(args, name) < 1:
+            raise ValueError(f"--{name} must be at least 1")
+    if args.threads < 0:
+        raise ValueError("--threads must be >= 0")
+    cmd = [bench_program(), "--modules", str(args.modules), "--steps", str(args.steps),
+           "--threads", str(args.threads), "--repeats", str(args.repeats)]
+    return subprocess.run(cmd).returncode
+
+
 def build_parser() -> argparse.ArgumentParser:
     p = _Parser(prog="ldem", description="Truss-like lattice DEM (Riera-Iturrioz) for fracture of concrete.")
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
@@ -73,6 +97,17 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
     c.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
     c.set_defaults(func=cmd_cube)
+
+    b = sub.add_parser("bench", help="time the time step of an N^3 cube (one line of JSON)",
+                       description="Builds an N^3 cube (default material), runs S steps of uniform loading R "
+                                   "times and prints modules, bars, nodes, steps, threads, ns_per_bar_step "
+                                   "(median of the R repetitions), peak_rss_bytes and bytes_per_bar.",
+                       formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    b.add_argument("--modules", type=int, default=24, metavar="N", help="modules per side")
+    b.add_argument("--steps", type=int, default=200, metavar="S", help="steps per repetition")
+    b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
+    b.add_argument("--repeats", type=int, default=5, metavar="R", help="repetitions (the median is reported)")
+    b.set_defaults(func=cmd_bench)
     return p
 
 
