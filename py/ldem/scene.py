@@ -1,0 +1,45 @@
+"""Helpers for scene scripts (scripts/*.py) that run under /usr/bin/python3,
+yade-double and yade-double-batch alike."""
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+
+
+def in_yade() -> bool:
+    """True inside yade-double (its Python has the yade package loaded)."""
+    return "yade" in sys.modules
+
+
+def parameters(defaults: dict, argv=None) -> dict:
+    """The script's parameters: `defaults`, overridden by
+
+    - the job's row of a yade-batch table (under yade-double-batch, which sets
+      YADE_BATCH, PARAM_TABLE in older YADE; read with yade.utils.readParamsFromTable), or
+    - `--name value` options on the command line (python3 script.py --size 0.24).
+
+    Adds `description` (yade-batch's job description; empty outside a batch)
+    and `threads` (yade's -j / --job-threads inside YADE, else all cores).
+    """
+    if os.environ.get("YADE_BATCH") or os.environ.get("PARAM_TABLE"):
+        from yade import utils  # noqa: F401 (only under yade-double-batch)
+        utils.readParamsFromTable(noTableOk=True, **defaults)
+        from yade.params import table
+        values = {k: getattr(table, k) for k in defaults}
+        from yade import O
+        values["description"] = O.tags.get("description", "") if hasattr(O.tags, "get") else O.tags["description"]
+    else:
+        p = argparse.ArgumentParser(description="scene script parameters (defaults in the script)")
+        for k, v in defaults.items():
+            p.add_argument("--" + k.replace("_", "-"), dest=k, type=type(v) if v is not None else str, default=v)
+        values = vars(p.parse_args(sys.argv[1:] if argv is None else argv))
+        values["description"] = ""
+    if "threads" not in values:
+        values["threads"] = _yade_threads() if in_yade() else 0
+    return values
+
+
+def _yade_threads() -> int:
+    from yade import O  # noqa: F401
+    return O.numThreads

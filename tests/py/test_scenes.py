@@ -1,0 +1,42 @@
+"""The scene script runs under python3, yade-double and yade-double-batch and
+writes the same files as `ldem cube`; yade-batch table rows reach it."""
+import json
+import os
+import shutil
+import subprocess
+
+import pytest
+
+from conftest import BUILD_PY, ROOT
+
+SCRIPT = os.path.join(ROOT, "scripts", "cube_tension.py")
+ENV = dict(os.environ, PYTHONPATH=BUILD_PY)
+
+
+def summary(folder):
+    return json.loads((folder / "summary.json").read_text())
+
+
+def test_scene_script_under_python3(tmp_path):
+    r = subprocess.run(["/usr/bin/python3", SCRIPT, "--size", "0.08", "--seed", "4", "--out", str(tmp_path)],
+                       capture_output=True, text=True, env=ENV, timeout=300)
+    assert r.returncode == 0, r.stderr
+    s = summary(tmp_path / "uniform_0.08m_seed4")
+    assert s["status"] == "done" and s["parameters"]["seed"] == 4 and s["parameters"]["size"] == 0.08
+    assert "peak" in r.stdout
+
+
+def test_scene_script_under_yade_batch(tmp_path):
+    batch = shutil.which("yade-double-batch")
+    if batch is None:
+        pytest.skip("yade-double-batch is not installed")
+    table = tmp_path / "sweep.table"
+    table.write_text("description size load seed\nu8_s1 0.08 'uniform' 1\nt8_s2 0.08 'triangular' 2\n")
+    r = subprocess.run([batch, "--job-threads", "1", "--log", str(tmp_path / "@.log"), str(table), SCRIPT],
+                       capture_output=True, text=True, env=ENV, cwd=tmp_path, timeout=600)
+    assert r.returncode == 0, r.stdout + r.stderr
+    u, t = summary(tmp_path / "out/scenes/u8_s1"), summary(tmp_path / "out/scenes/t8_s2")
+    assert (u["parameters"]["load"], u["parameters"]["seed"], u["threads"]) == ("uniform", 1, 1)
+    assert (t["parameters"]["load"], t["parameters"]["seed"]) == ("triangular", 2)
+    assert t["parameters"]["size"] == 0.08
+    assert (tmp_path / "out/scenes/t8_s2/curve.csv").exists()
