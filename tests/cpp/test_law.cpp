@@ -178,6 +178,8 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
     const double L0 = 0.02;
     const Lattice lat = buildCubicLattice(1, 1, 1, L0, m);
     const std::int64_t nb = lat.numBars();
+    const BarTable t = listBars(lat);
+    const auto x0 = nodePositions(lat);
     BarState bars;
     bars.epsP = m.epsP;
     bars.kappa.assign(nb, 0.0);
@@ -185,22 +187,23 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
     double sumAfGf = 0, maxEpsR = 0, minEpsR = 1;
     for (std::int64_t b = 0; b < nb; ++b) {
         const double Gf = 50 + 100 * hashedUniform(3, b, 0);  // in [50, 150]: no clamped bar
-        const LimitStrain ls = limitStrain(lat.barAf(b), Gf, lat.barEA(b), m.epsP, lat.barLength(b));
+        const LimitStrain ls = limitStrain(t.Af[b], Gf, t.EA[b], m.epsP, t.L[b]);
         ASSERT_FALSE(ls.clamped);
         bars.epsR[b] = ls.epsR;
-        sumAfGf += lat.barAf(b) * Gf;
+        sumAfGf += t.Af[b] * Gf;
         maxEpsR = std::max(maxEpsR, ls.epsR);
         minEpsR = std::min(minEpsR, ls.epsR);
     }
     Field3 u(lat.numNodes()), f(lat.numNodes());
+    BarForceBuffers g;
     // Generalised force conjugate to s: dW = -f . x0 ds (the force the loader applies is -f).
     auto load = [&](double s) {
         for (std::int64_t i = 0; i < lat.numNodes(); ++i)
-            u.x[i] = s * lat.x0[i], u.y[i] = s * lat.y0[i], u.z[i] = s * lat.z0[i];
-        computeInternalForces(lat, u, bars, f);
+            u.x[i] = s * x0[0][i], u.y[i] = s * x0[1][i], u.z[i] = s * x0[2][i];
+        computeInternalForces(lat, u, bars, g, f);
         double Q = 0;
         for (std::int64_t i = 0; i < lat.numNodes(); ++i)
-            Q -= f.x[i] * lat.x0[i] + f.y[i] * lat.y0[i] + f.z[i] * lat.z0[i];
+            Q -= f.x[i] * x0[0][i] + f.y[i] * x0[1][i] + f.z[i] * x0[2][i];
         return Q;
     };
     double s = 0, Q = load(0), W = 0;
@@ -233,8 +236,8 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
     // the loader's force is sum EA L eps (all bars at the same strain).
     double stored = 0, Qel = 0;
     for (std::int64_t b = 0; b < nb; ++b) {
-        stored += 0.5 * lat.barEA(b) * lat.barLength(b) * s * s;
-        Qel += lat.barEA(b) * lat.barLength(b) * s;
+        stored += 0.5 * t.EA[b] * t.L[b] * s * s;
+        Qel += t.EA[b] * t.L[b] * s;
     }
     EXPECT_NEAR(e.elastic, stored, 1e-9 * stored);
     EXPECT_NEAR(Q, Qel, 1e-6 * std::abs(Qel));

@@ -26,12 +26,14 @@ namespace {
 Eigen::MatrixXd assembleStiffness(const Lattice& lat) {
     const Eigen::Index N = 3 * lat.numNodes();
     Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+    const BarTable t = listBars(lat);
+    const auto x0 = nodePositions(lat);
     for (std::int64_t b = 0; b < lat.numBars(); ++b) {
-        const auto i = lat.n1[b], j = lat.n2[b];
-        const double dx = lat.x0[j] - lat.x0[i], dy = lat.y0[j] - lat.y0[i], dz = lat.z0[j] - lat.z0[i];
+        const auto i = t.n1[b], j = t.n2[b];
+        const double dx = x0[0][j] - x0[0][i], dy = x0[1][j] - x0[1][i], dz = x0[2][j] - x0[2][i];
         const double L = std::sqrt(dx * dx + dy * dy + dz * dz);
         const double n[3] = {dx / L, dy / L, dz / L};
-        const double k = lat.barEA(b) / L;
+        const double k = t.EA[b] / L;
         for (int a = 0; a < 3; ++a)
             for (int c = 0; c < 3; ++c) {
                 const double v = k * n[a] * n[c];
@@ -71,9 +73,10 @@ Reduced reduce(const Lattice& lat, const std::vector<std::uint8_t>& mask) {
 template <class Shape>
 double rayleigh(const Lattice& lat, const Reduced& r, Shape shape) {
     Eigen::VectorXd u(r.dofs.size());
+    const auto x0 = nodePositions(lat);
     for (Eigen::Index a = 0; a < u.size(); ++a) {
         const auto node = r.dofs[a] / 3;
-        u(a) = shape(lat.x0[node], lat.y0[node], lat.z0[node], int(r.dofs[a] % 3));
+        u(a) = shape(x0[0][node], x0[1][node], x0[2][node], int(r.dofs[a] % 3));
     }
     return u.dot(r.K * u) / u.dot(r.m.asDiagonal() * u);
 }
@@ -170,7 +173,8 @@ TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
         x.y[i] = xv(3 * i + 1) = hashedUniform(9, i, 1) - 0.5;
         x.z[i] = xv(3 * i + 2) = hashedUniform(9, i, 2) - 0.5;
     }
-    linearStiffnessProduct(lat, x, y);
+    BarForceBuffers g;
+    linearStiffnessProduct(lat, x, g, y);
     const Eigen::VectorXd yv = K * xv;
     const double scale = yv.cwiseAbs().maxCoeff();
     for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
@@ -187,7 +191,7 @@ TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
     const double a = 1e-9;  // displacement amplitude [m]: geometric nonlinearity ~ a / L0 = 5e-8
     for (std::int64_t i = 0; i < lat.numNodes(); ++i)
         small.x[i] = a * x.x[i], small.y[i] = a * x.y[i], small.z[i] = a * x.z[i];
-    computeInternalForces(lat, small, bars, f);
+    computeInternalForces(lat, small, bars, g, f);
     for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
         EXPECT_NEAR(f.x[i], -a * yv(3 * i), 1e-6 * a * scale);
         EXPECT_NEAR(f.y[i], -a * yv(3 * i + 1), 1e-6 * a * scale);

@@ -143,8 +143,9 @@ TEST(FractureEnergyField, IndependentDrawsPerBar) {
     for (double g : a) s += g;
     EXPECT_NEAR(s / a.size(), 100.0, 4 * 100 / std::sqrt(double(a.size())));
     // Bars sharing a node are uncorrelated (consecutive bars in each node's list).
+    const BarTable t = listBars(lat);
     std::vector<std::vector<std::int64_t>> barsAt(lat.numNodes());
-    for (std::int64_t b = 0; b < lat.numBars(); ++b) barsAt[lat.n1[b]].push_back(b), barsAt[lat.n2[b]].push_back(b);
+    for (std::int64_t b = 0; b < lat.numBars(); ++b) barsAt[t.n1[b]].push_back(b), barsAt[t.n2[b]].push_back(b);
     std::vector<double> p, q;
     for (const auto& list : barsAt)
         for (std::size_t k = 0; k + 1 < list.size(); ++k) p.push_back(a[list[k]]), q.push_back(a[list[k + 1]]);
@@ -166,11 +167,13 @@ TEST(FractureEnergyField, CorrelationLengthMakesNearBarsAlike) {
     const auto gf = fractureEnergyField(lat, m, seed);
     const Weibull w = weibullFromMeanCV(m.GfMean, m.GfCV);
     const std::int64_t nb = lat.numBars();
+    const BarTable t = listBars(lat);
+    const auto x0 = nodePositions(lat);
     std::vector<double> mx(nb), my(nb), mz(nb), score(nb);
     for (std::int64_t b = 0; b < nb; ++b) {
-        const auto i = lat.n1[b], j = lat.n2[b];
-        mx[b] = 0.5 * (lat.x0[i] + lat.x0[j]), my[b] = 0.5 * (lat.y0[i] + lat.y0[j]),
-        mz[b] = 0.5 * (lat.z0[i] + lat.z0[j]);
+        const auto i = t.n1[b], j = t.n2[b];
+        mx[b] = 0.5 * (x0[0][i] + x0[0][j]), my[b] = 0.5 * (x0[1][i] + x0[1][j]),
+        mz[b] = 0.5 * (x0[2][i] + x0[2][j]);
         ASSERT_GT(gf[b], 0.0);
         score[b] = normalScore(w, gf[b]);
     }
@@ -180,7 +183,7 @@ TEST(FractureEnergyField, CorrelationLengthMakesNearBarsAlike) {
     };
     // Near pairs: bars sharing a node (midpoints at most L0 apart), kept if < l_c/4.
     std::vector<std::vector<std::int64_t>> barsAt(lat.numNodes());
-    for (std::int64_t b = 0; b < nb; ++b) barsAt[lat.n1[b]].push_back(b), barsAt[lat.n2[b]].push_back(b);
+    for (std::int64_t b = 0; b < nb; ++b) barsAt[t.n1[b]].push_back(b), barsAt[t.n2[b]].push_back(b);
     std::vector<double> na, nbv;
     for (const auto& list : barsAt)
         for (std::size_t p = 0; p < list.size(); ++p)
