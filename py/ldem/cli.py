@@ -108,6 +108,9 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
     b.add_argument("--repeats", type=int, default=5, metavar="R", help="repetitions (the median is reported)")
     b.set_defaults(func=cmd_bench)
+
+    from . import study
+    study.add_parser(sub)
     return p
 
 

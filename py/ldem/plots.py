@@ -61,10 +61,10 @@ def central_slice(sim, axis: int = 1):
     return seg, damage_states(sim.kappa[keep], sim.eps_p, sim.eps_r[keep])
 
 
-def draw_slice(ax, sim, axis: int = 1) -> dict:
-    seg, state = central_slice(sim, axis)
+def draw_slice(ax, seg, state) -> dict:
+    """Draws segments coloured by damage state (broken on top); returns the counts."""
     counts = {}
-    for st, lw in ((UNDAMAGED, 0.5), (DAMAGED, 1.2), (BROKEN, 1.8)):  # broken drawn on top
+    for st, lw in ((UNDAMAGED, 0.5), (DAMAGED, 1.2), (BROKEN, 1.8)):
         sel = state == st
         counts[st] = int(sel.sum())
         ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw))
@@ -74,13 +74,21 @@ def draw_slice(ax, sim, axis: int = 1) -> dict:
     return counts
 
 
-def crack_figure(sim, path: str, title: str = "") -> None:
-    fig, ax = plt.subplots(figsize=(5.6, 6.0))
-    counts = draw_slice(ax, sim)
-    handles = [Line2D([], [], color=STATE_COLOURS[s], lw=2, label=f"{STATE_NAMES[s]} ({counts[s]})")
+def state_legend(ax, counts=None) -> None:
+    handles = [Line2D([], [], color=STATE_COLOURS[s], lw=2,
+                      label=STATE_NAMES[s] + (f" ({counts[s]})" if counts else ""))
                for s in (UNDAMAGED, DAMAGED, BROKEN)]
     ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=3, fontsize=8, frameon=False)
+
+
+def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
+    fig, ax = plt.subplots(figsize=(5.6, 6.0))
+    state_legend(ax, draw_slice(ax, seg, state))
     ax.set_title(title or "central slice", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=130)
     plt.close(fig)
+
+
+def crack_figure(sim, path: str, title: str = "") -> None:
+    crack_figure_from_slice(*central_slice(sim), path, title)

@@ -1,0 +1,237 @@
+"""Figures and report.md of a study folder (see ldem.study for its layout)."""
+from __future__ import annotations
+
+import os
+from typing import Dict, List, Sequence
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+from . import plots  # noqa: E402
+from .study import B0, case_name, load_curve, load_summary, read_csv  # noqa: E402
+
+
+def _case_dir(out, test):
+    return os.path.join(out, "cases", case_name(test))
+
+
+def mean_curve(curves: Sequence[dict], column: str, scale=1.0, n: int = 400):
+    """Mean of a curve column over specimens on a common mean-strain grid. A
+    specimen that split early carries on at its last value (about 0 for the
+    stress, the final energy for the fracture energy)."""
+    top = max(c["mean_strain"][-1] for c in curves)
+    grid = np.linspace(0.0, top, n)
+    ys = [np.interp(grid, c["mean_strain"], c[column] * scale, right=(c[column] * scale)[-1]) for c in curves]
+    return grid, np.mean(ys, axis=0)
+
+
+def _save(fig, path):
+    fig.tight_layout()
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
+
+
+def _by_case(out, tests) -> Dict[tuple, List[dict]]:
+    """(load, size) -> the curves of its specimens, in seed order."""
+    groups: Dict[tuple, List[dict]] = {}
+    for t in tests:
+        groups.setdefault((t.load, t.size), []).append(load_curve(_case_dir(out, t)))
+    return groups
+
+
+def _strain_axis(ax, ylabel):
+    ax.set(xlabel="mean strain [1e-4]", ylabel=ylabel)
+    ax.grid(alpha=0.3)
+
+
+def specimen_curves_figure(groups, load, sizes, path):
+    """Every specimen's stress-strain curve and their mean, one panel per size."""
+    fig, axes = plt.subplots(1, len(sizes), figsize=(5.2 * len(sizes), 4.2), squeeze=False)
+    for ax, size in zip(axes[0], sizes):
+        curves = groups[(load, size)]
+        for k, c in enumerate(curves, start=1):
+            ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=0.8, alpha=0.6, label=f"seed {k}")
+        x, y = mean_curve(curves, "stress_MPa")
+        ax.plot(x * 1e4, y, "k", lw=2.2, label="mean")
+        _strain_axis(ax, "normal stress [MPa]")
+        ax.set_title(f"{size:g} m cube, {load}")
+        ax.legend(fontsize=7)
+    _save(fig, path)
+
+
+def mean_curves_figure(groups, load, sizes, path):
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for size in sizes:
+        x, y = mean_curve(groups[(load, size)], "stress_MPa")
+        ax.plot(x * 1e4, y, lw=1.6, label=f"{size:g} m")
+    _strain_axis(ax, "mean normal stress [MPa]")
+    ax.set_title(f"mean stress-strain curves, {load} loading")
+    ax.legend(fontsize=8)
+    _save(fig, path)
+
+
+def fracture_energy_figure(out, tests, groups, load, sizes, path):
+    """U_frac / U_min (fracture energy dissipated so far over G_f x face area)."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for size in sizes:
+        t = next(t for t in tests if t.load == load and t.size == size)
+        u_min = load_summary(_case_dir(out, t))["min_fracture_energy_J"]
+        x, y = mean_curve(groups[(load, size)], "fracture_J", scale=1.0 / u_min)
+        ax.plot(x * 1e4, y, lw=1.6, label=f"{size:g} m")
+    _strain_axis(ax, "U_frac / U_min")
+    ax.set_title(f"normalized fracture energy (mean of specimens), {load} loading")
+    ax.legend(fontsize=8)
+    _save(fig, path)
+
+
+def cracks_figure(out, tests, load, sizes, path, seed=1):
+    """Central slices at the end of the run, one specimen per size."""
+    fig, axes = plt.subplots(1, len(sizes), figsize=(3.4 * len(sizes), 3.9), squeeze=False)
+    for ax, size in zip(axes[0], sizes):
+        t = next(t for t in tests if t.load == load and t.size == size and t.seed == seed)
+        with np.load(os.path.join(_case_dir(out, t), "slice.npz")) as z:
+            plots.draw_slice(ax, z["segments"], z["states"])
+        ax.set_title(f"{size:g} m, seed {seed}", fontsize=9)
+    plots.state_legend(axes[0][len(sizes) // 2])
+    fig.suptitle(f"central slices at the end of the test, {load} loading", fontsize=10)
+    _save(fig, path)
+
+
+def fractal_figure(table, fits, path):
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    cases = read_csv(os.path.join(os.path.dirname(path), "cases.csv"))
+    for load, fit in fits.items():
+        rows = [r for r in table if r["load"] == load]
+        b = np.array([r["size_m"] for r in rows])
+        u = np.array([r["U_num_J_mean"] for r in rows])
+        line, = ax.plot(b, u, "o", label=f"{load}: mean U_num")
+        each = [(c["size_m"], c["U_num_J"]) for c in cases if c["load"] == load]
+        ax.plot(*zip(*each), ".", color=line.get_color(), alpha=0.35)
+        bb = np.geomspace(b.min(), b.max(), 50)
+        ax.plot(bb, fit["U_b0_J"] * (bb / fit["b0_m"]) ** fit["d"], "-", color=line.get_color(),
+                label=f"{load}: U(b0)(b/b0)^d, d = {fit['d']:.3f}")
+    ax.set(xscale="log", yscale="log", xlabel="cube side b [m]", ylabel="U_num [J]",
+           title=f"fracture energy to split the cube, fractal law with b0 = {B0:g} m")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=8)
+    _save(fig, path)
+
+
+def damping_figures(out, tests) -> List[str]:
+    """One figure per load: the stress-strain curve at each damping ratio."""
+    names = []
+    for load in dict.fromkeys(t.load for t in tests):
+        fig, ax = plt.subplots(figsize=(6.4, 4.4))
+        for t in (t for t in tests if t.load == load):
+            c = load_curve(_case_dir(out, t))
+            s = load_summary(_case_dir(out, t))
+            ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=1.4,
+                    label=f"zeta = {t.zeta:g}: peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
+        _strain_axis(ax, "normal stress [MPa]")
+        ax.set_title(f"damping, {tests[0].size:g} m cube, {load}, seed {tests[0].seed}")
+        ax.legend(fontsize=8)
+        names.append(f"damping_{load}.png")
+        _save(fig, os.path.join(out, names[-1]))
+    return names
+
+
+def _md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def _pct(a, b):
+    return f"{100 * (a - b) / b:+.1f} %"
+
+
+def size_effect_report(out, tests, table, fits) -> None:
+    loads = list(dict.fromkeys(t.load for t in tests))
+    sizes = sorted({t.size for t in tests})
+    groups = _by_case(out, tests)
+    figs = []
+    for load in loads:
+        ends = sorted({sizes[0], sizes[-1]})
+        specimen_curves_figure(groups, load, ends, os.path.join(out, f"curves_{load}.png"))
+        mean_curves_figure(groups, load, sizes, os.path.join(out, f"mean_curves_{load}.png"))
+        cracks_figure(out, tests, load, sizes, os.path.join(out, f"cracks_{load}.png"))
+        fracture_energy_figure(out, tests, groups, load, sizes, os.path.join(out, f"fracture_energy_{load}.png"))
+        figs += [(f"curves_{load}.png", f"every specimen and the mean, {load}"),
+                 (f"mean_curves_{load}.png", f"mean curves of all sizes, {load}"),
+                 (f"cracks_{load}.png", f"crack pictures (central slice, seed 1), {load}"),
+                 (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain, {load}")]
+    if fits:
+        fractal_figure(table, fits, os.path.join(out, "fractal.png"))
+        figs.append(("fractal.png", "U_num against size, fractal law"))
+    write_report(out, tests, table, fits, figs)
+
+
+def write_report(out, tests, table, fits, figs) -> None:
+    first = load_summary(_case_dir(out, tests[0]))
+    p = first["parameters"]
+    md = ["# Size-effect study: ldem against the reference study", "",
+          f"{len(tests)} cube tension tests: sizes {', '.join(f'{s:g}' for s in sorted({t.size for t in tests}))} m, "
+          f"seeds 1-{max(t.seed for t in tests)}, loads {', '.join(dict.fromkeys(t.load for t in tests))}. "
+          "Generated by `ldem study size-effect`; every number below is read from `cases.csv` and `summary.csv`.",
+          "", "## Parameters", "",
+          _md_table(["parameter", "value"], [
+              ["E, nu, rho", f"{p['E']:g} Pa, {p['nu']:g}, {p['rho']:g} kg/m^3"],
+              ["E[G_f], CV(G_f)", f"{p['Gf_mean']:g} N/m, {p['Gf_cv']:g} (Weibull, one draw per bar)"
+               if p["corr_length"] == 0 else f"{p['Gf_mean']:g} N/m, {p['Gf_cv']:g}, l_c = {p['corr_length']:g} m"],
+              ["eps_p, c_a, L0", f"{p['eps_p']:g}, {p['c_a']:g}, {p['L0']:g} m"],
+              ["strain rate", f"{p['strain_rate']:g} 1/s at the upper face, velocity ramped up as 1 - cos over "
+                              "two fundamental periods"],
+              ["boundaries", f"lower face: lateral {p['bottom_lateral']}, vertical fixed; upper face: lateral "
+                             f"{p['top_lateral']}"],
+              ["damping", f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"],
+              ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
+                            "same L0)"],
+              ["stop", f"stress < {p['stop_fraction']:g} x peak after bars broke, or mean strain "
+                       f"{p['final_strain']:g}"],
+              ["threads per case", str(first["threads"])],
+          ]), ""]
+    md += ["## Peak stress and strain at peak", ""]
+    for load in dict.fromkeys(r["load"] for r in table):
+        rows = []
+        for r in (r for r in table if r["load"] == load):
+            ref = r["ref_peak_stress_MPa"] != ""
+            rows.append([f"{r['size_m']:g}", r["seeds"], f"{r['peak_stress_MPa_mean']:.3f}",
+                         f"{r['peak_stress_MPa_cv']:.3f}",
+                         f"{r['ref_peak_stress_MPa']:.2f} ({_pct(r['peak_stress_MPa_mean'], r['ref_peak_stress_MPa'])})"
+                         if ref else "-",
+                         f"{r['strain_at_peak_mean']:.3e}", f"{r['strain_at_peak_cv']:.3f}",
+                         f"{r['ref_strain_at_peak']:.2e} ({_pct(r['strain_at_peak_mean'], r['ref_strain_at_peak'])})"
+                         if ref else "-", f"{r['wall_s_mean']:.0f}"])
+        md += [f"### {load}", "", _md_table(
+            ["size [m]", "seeds", "peak [MPa]", "CV", "study (Table 3)", "strain at peak", "CV", "study",
+             "wall [s] per case"], rows), ""]
+    md += ["## Fracture energy", "",
+           "U_num: fracture energy dissipated when the specimen no longer carries load; U_min = E[G_f] x face area; "
+           "corrected c_a = 0.1385 x E[U_num/U_min] (the study's proposal for coarser meshes).", ""]
+    rows = [[r["load"], f"{r['size_m']:g}", f"{r['U_num_J_mean']:.4g}", f"{r['U_min_J']:.4g}",
+             f"{r['U_ratio_mean']:.3f}", f"{r['U_ratio_cv']:.3f}", f"{r['ca_corrected']:.4f}"] for r in table]
+    md += [_md_table(["load", "size [m]", "U_num [J]", "U_min [J]", "U_num/U_min", "CV", "corrected c_a"], rows), ""]
+    if fits:
+        md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]
+        md += [_md_table(["load", "d", "energy per unit area ~ b^(d-2)", "rms log residual"],
+                         [[ld, f"{f['d']:.3f}", f"{f['d_specific']:+.3f}", f"{f['rms_log_residual']:.3f}"]
+                          for ld, f in fits.items()]), ""]
+    damping_csv = os.path.join(out, "damping.csv")
+    if os.path.exists(damping_csv):
+        rows = read_csv(damping_csv)
+        md += ["## Damping", "", "`ldem study damping`: the same specimen at several damping ratios.", "",
+               _md_table(["load", "size [m]", "zeta", "peak [MPa]", "strain at peak", "U_num/U_min"],
+                         [[r["load"], f"{r['size_m']:g}", f"{r['zeta']:g}", f"{r['peak_stress_MPa']:.3f}",
+                           f"{r['strain_at_peak']:.3e}", f"{r['U_ratio']:.3f}"] for r in rows]), ""]
+        figs += [(f, f"damping, {f[8:-4]}") for f in sorted(os.listdir(out)) if f.startswith("damping_")
+                 and f.endswith(".png")]
+    md += ["## Figures", ""] + [f"![{title}]({name})\n" for name, title in figs]
+    discussion = os.path.join(out, "discussion.md")
+    if os.path.exists(discussion):
+        with open(discussion) as f:
+            md += ["## Discussion", "", f.read().strip(), ""]
+    with open(os.path.join(out, "report.md"), "w") as f:
+        f.write("\n".join(md) + "\n")

@@ -1,0 +1,114 @@
+"""The study machinery on tiny cubes: resume, aggregation, the fractal fit,
+parallel processes and a local dask cluster."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+from conftest import FAST
+from ldem import study
+from ldem.cube import CubeTest
+
+TINY = dict(strain_rate=FAST["strain_rate"], final_strain=FAST["final_strain"], threads=1)
+
+
+def test_fractal_fit_recovers_known_exponent():
+    b = np.array([0.12, 0.24, 0.48, 0.72, 0.96])
+    u = 3.7 * (b / 0.12) ** 2.31
+    fit = study.fit_fractal(b, u)
+    assert fit["d"] == pytest.approx(2.31, abs=1e-12)
+    assert fit["d_specific"] == pytest.approx(0.31, abs=1e-12)
+    assert fit["U_b0_J"] == pytest.approx(3.7)
+    assert fit["rms_log_residual"] < 1e-12
+    # Noise that is symmetric in log space around the law leaves d nearly unchanged.
+    noisy = u * np.exp([0.0, 0.05, -0.05, 0.05, -0.05])
+    assert study.fit_fractal(b, noisy)["d"] == pytest.approx(2.31, abs=0.05)
+    with pytest.raises(ValueError, match="reference size"):
+        study.fit_fractal([0.24, 0.48], [1.0, 2.0])
+
+
+def test_mean_cv_and_aggregation():
+    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": 1e-4 * p, "U_num_J": u,
+             "U_min_J": 1.44, "U_ratio": u / 1.44, "wall_s": 1.0} for p, u in ((2.0, 1.0), (3.0, 2.0), (4.0, 3.0))]
+    (r,) = study.aggregate(rows, c_a=0.1385)
+    assert r["seeds"] == 3
+    assert r["peak_stress_MPa_mean"] == pytest.approx(3.0)
+    assert r["peak_stress_MPa_cv"] == pytest.approx(1.0 / 3.0)  # sample std 1 over mean 3
+    assert r["U_ratio_mean"] == pytest.approx(2.0 / 1.44)
+    assert r["ca_corrected"] == pytest.approx(0.1385 * 2.0 / 1.44)
+    assert (r["ref_peak_stress_MPa"], r["ref_strain_at_peak"]) == (2.45, 1.47e-4)  # Table 3
+
+
+def test_case_names_carry_non_default_parameters():
+    assert study.case_name(CubeTest(size=0.24, seed=3)) == "uniform_0.24m_s3"
+    assert study.case_name(CubeTest(size=0.24, seed=3, zeta=2.0, threads=2)) == "uniform_0.24m_s3_zeta2"
+
+
+def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
+    out = str(tmp_path / "st")
+    tests = study.size_effect_tests([0.04, 0.08], 2, ["uniform"], **TINY)
+    first = study.run_cases(tests, out, log=lambda s: None)
+    assert [s["status"] for s in first] == ["done"] * 4
+    dirs = [os.path.join(out, "cases", study.case_name(t)) for t in tests]
+    stamp = {d: os.path.getmtime(os.path.join(d, "summary.json")) for d in dirs}
+    # Half-finished case: interrupted run (summary says so) -> recomputed; the others are kept.
+    with open(os.path.join(dirs[1], "summary.json")) as f:
+        s = json.load(f)
+    s["status"] = "interrupted"
+    with open(os.path.join(dirs[1], "summary.json"), "w") as f:
+        json.dump(s, f)
+    os.remove(os.path.join(dirs[2], "slice.npz"))  # died before its last file
+    ran = []
+    again = study.run_cases(tests, out, log=ran.append)
+    assert ran[0] == f"2 of 4 cases already finished in {out}/cases"
+    assert len(ran) == 3  # that line and the two recomputed cases
+    for i in (0, 3):
+        assert os.path.getmtime(os.path.join(dirs[i], "summary.json")) == stamp[dirs[i]]
+    assert again[1]["status"] == "done"
+    # Deterministic: the recomputed case gives the same figures.
+    assert again[1]["peak_stress_MPa"] == first[1]["peak_stress_MPa"]
+    assert again[2]["fracture_energy_J"] == first[2]["fracture_energy_J"]
+
+
+def test_size_effect_command_tables_and_report(tmp_path, cli):
+    out = str(tmp_path / "se")
+    r = cli("study", "size-effect", "--out", out, "--sizes", "0.04,0.12", "--seeds", "2", "--jobs", "2",
+            "--strain-rate", "0.1", "--no-progress")
+    assert r.returncode == 0, r.stderr
+    summary = study.read_csv(os.path.join(out, "summary.csv"))
+    cases = study.read_csv(os.path.join(out, "cases.csv"))
+    assert len(cases) == 8 and len(summary) == 4
+    for col in study.SUMMARY_COLUMNS:
+        assert col in summary[0]
+    u012 = [c for c in cases if c["load"] == "uniform" and c["size_m"] == 0.12]
+    row = next(s for s in summary if s["load"] == "uniform" and s["size_m"] == 0.12)
+    assert row["peak_stress_MPa_mean"] == pytest.approx(np.mean([c["peak_stress_MPa"] for c in u012]), rel=1e-5)
+    assert row["U_ratio_mean"] == pytest.approx(np.mean([c["U_ratio"] for c in u012]), rel=1e-5)
+    assert all(c["energy_balance_error"] < 0.01 for c in cases)
+    fits = json.load(open(os.path.join(out, "fractal.json")))
+    assert set(fits) == {"uniform", "triangular"}
+    for name in ("report.md", "fractal.png", "cracks_uniform.png", "curves_triangular.png",
+                 "mean_curves_uniform.png", "fracture_energy_triangular.png"):
+        assert os.path.getsize(os.path.join(out, name)) > 0, name
+    assert "| 0.12 | 2 |" in open(os.path.join(out, "report.md")).read()
+
+
+def test_study_bad_input_is_one_line(tmp_path, cli):
+    r = cli("study", "size-effect", "--out", str(tmp_path), "--sizes", "0.12,-1")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "positive" in r.stderr
+    r = cli("study", "damping", "--out", str(tmp_path), "--loads", "shear")
+    assert r.returncode == 2 and "unknown load 'shear'" in r.stderr
+
+
+def test_cases_on_a_local_dask_cluster(tmp_path):
+    distributed = pytest.importorskip("distributed")
+    out = str(tmp_path / "dask")
+    tests = study.damping_tests(0.04, [0.02, 1.5], ["uniform"], **TINY)
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as c:
+        summaries = study.run_cases(tests, out, scheduler=c.scheduler_address, log=lambda s: None)
+    assert [s["status"] for s in summaries] == ["done", "done"]
+    assert [s["parameters"]["zeta"] for s in summaries] == [0.02, 1.5]
+    # The same cases in this process give the same numbers.
+    local = study.run_cases(tests, str(tmp_path / "local"), log=lambda s: None)
+    assert [s["peak_stress_MPa"] for s in local] == [s["peak_stress_MPa"] for s in summaries]
