@@ -1,7 +1,9 @@
 #include "ldem/Simulation.hpp"
 
 #include <cmath>
+#include <deque>
 #include <sstream>
+#include <utility>
 
 #include "ldem/Integrator.hpp"
 #include "ldem/Parallel.hpp"
@@ -16,6 +18,7 @@ void RunParams::validate() const {
     if (!(dtSafety > 0 && dtSafety <= 1)) fail("time-step safety factor must be in (0, 1]");
     if (!(finalStrain > 0)) fail("final strain must be positive (got " + std::to_string(finalStrain) + ")");
     if (!(stopFraction >= 0 && stopFraction < 1)) fail("stop fraction must be in [0, 1)");
+    if (!(splitWindow >= 0) || !std::isfinite(splitWindow)) fail("split window must be >= 0 s");
     if (recordEvery < 0) fail("record interval must be >= 0 steps");
     if (threads < 0) fail("threads must be >= 0");
 }
@@ -41,7 +44,9 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
     dt_ = run_.dt > 0 ? run_.dt : limit;
     Df_ = massDampingCoefficient(run_.zeta, freq_.omega1);
     const double pi = 3.14159265358979323846;
-    drive_ = {load_.strainRate * con_.height, load_.rampTime > 0 ? load_.rampTime : 4 * pi / freq_.omega1};
+    const double period1 = 2 * pi / freq_.omega1;
+    drive_ = {load_.strainRate * con_.height, load_.rampTime > 0 ? load_.rampTime : 2 * period1};
+    splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
     } else {  // about 2000 records up to the final strain
@@ -133,6 +138,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     setThreads(run_.threads);
     RunSummary s;
     double maxWork = 0, maxResidual = 0;
+    std::deque<std::pair<double, double>> recent;  // (time, lower-face stress) of the records in the split window
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
@@ -158,8 +164,18 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         s.fractureEnergy = p.fracture;
         s.steps = step_;
         const bool keepGoing = !observer || observer(p);
-        // Split: bars have broken and the stress has fallen below a fraction of its peak.
-        if (p.broken > 0 && p.stressBottom < run_.stopFraction * s.peakStress) s.stopReason = "split";
+        // Split: bars have broken and the lower face no longer carries load. When
+        // the last ligaments snap, the reaction rings around zero for a while, and
+        // a single record below the threshold would stop the run while ligaments
+        // still hold (and still dissipate): the stress averaged over the split
+        // window (two fundamental periods) must be below the threshold.
+        recent.emplace_back(p.time, p.stressBottom);
+        while (recent.front().first < p.time - splitWindow_) recent.pop_front();
+        double windowSum = 0;
+        for (const auto& r : recent) windowSum += r.second;
+        const bool windowFull = p.time >= splitWindow_;
+        if (p.broken > 0 && windowFull && windowSum / recent.size() < run_.stopFraction * s.peakStress)
+            s.stopReason = "split";
         else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
         else if (!keepGoing) s.stopReason = "stopped";
         if (!s.stopReason.empty()) break;

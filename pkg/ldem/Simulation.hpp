@@ -24,7 +24,8 @@ struct RunParams {
     double dt = 0.0;             // time step [s]; 0 = safety x stability limit
     double dtSafety = 0.9;       // fraction of the stability limit 2/omega_max allowed
     double finalStrain = 2e-3;   // stop at this mean strain [-]
-    double stopFraction = 0.01;  // split when stress < this fraction of the peak, after the peak
+    double stopFraction = 0.01;  // split when stress < this fraction of the peak, after the peak,
+    double splitWindow = 0.0;    // ... on average over this time [s]; 0 = two fundamental periods
     int recordEvery = 0;         // steps between records; 0 = about 2000 records to the final strain
     int threads = 0;             // OpenMP threads; 0 = default
     void validate() const;
@@ -90,6 +91,7 @@ public:
     double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
     double dampingCoefficient() const { return Df_; }
     double rampTime() const { return drive_.rampTime; }
+    double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }
     std::int64_t clampedBars() const { return clamped_; }
     std::int64_t stepCount() const { return step_; }
@@ -111,7 +113,7 @@ private:
     BarState bars_;
     Field3 u_, v_, f_;  // per node
     BarForceBuffers g_;  // bar forces of the layers in use
-    double dt_ = 0, Df_ = 0, time_ = 0;
+    double dt_ = 0, Df_ = 0, time_ = 0, splitWindow_ = 0;
     CentralDifference cd_{0, 0};
     std::vector<double> layerDamping_;  // damping work of each node layer in the current step
     double externalWork_ = 0, dampingWork_ = 0;

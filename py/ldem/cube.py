@@ -57,7 +57,10 @@ class CubeTest:
                                  choices=("fixed", "free"))
     dt: float = _param(_RUN.dt, "s", "time step (0: safety x stability limit)")
     dt_safety: float = _param(_RUN.dt_safety, "", "fraction of the stability limit 2/omega_max allowed")
-    stop_fraction: float = _param(_RUN.stop_fraction, "", "split when stress < this fraction of the peak")
+    stop_fraction: float = _param(_RUN.stop_fraction, "", "split when the stress, averaged over the split "
+                                  "window, is below this fraction of the peak")
+    split_window: float = _param(_RUN.split_window, "s", "averaging time of the split test (0: two fundamental "
+                                 "periods)")
     record_every: int = _param(_RUN.record_every, "steps", "steps between curve rows (0: about 2000 rows)")
     threads: int = _param(_RUN.threads, "", "OpenMP threads (0: all cores)")
 
@@ -92,7 +95,7 @@ class CubeTest:
         lp.bottom_lateral_free = self.bottom_lateral == "free"
         rp = _core.RunParams()
         rp.seed, rp.zeta, rp.dt, rp.dt_safety = self.seed, self.zeta, self.dt, self.dt_safety
-        rp.final_strain, rp.stop_fraction = self.final_strain, self.stop_fraction
+        rp.final_strain, rp.stop_fraction, rp.split_window = self.final_strain, self.stop_fraction, self.split_window
         rp.record_every, rp.threads = self.record_every, self.threads
         return m, lp, rp
 
@@ -220,6 +223,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "omega_max_rad_s": sim.omega_max,
         "damping_coefficient_1_s": sim.damping_coefficient,
         "ramp_time_s": sim.ramp_time,
+        "split_window_s": sim.split_window,
         "threads": test.threads or _core.max_threads(),
         "wall_s": wall_s,
         "parameters": test.parameters(),

@@ -63,6 +63,7 @@ PYBIND11_MODULE(_core, m) {
         .def_readwrite("dt_safety", &RunParams::dtSafety)
         .def_readwrite("final_strain", &RunParams::finalStrain)
         .def_readwrite("stop_fraction", &RunParams::stopFraction)
+        .def_readwrite("split_window", &RunParams::splitWindow)
         .def_readwrite("record_every", &RunParams::recordEvery)
         .def_readwrite("threads", &RunParams::threads);
 
@@ -173,6 +174,7 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
         .def_property_readonly("ramp_time", &Simulation::rampTime)
+        .def_property_readonly("split_window", &Simulation::splitWindow)
         .def_property_readonly("loading", &Simulation::loading)
         .def("drive_displacement", [](const Simulation& s, double t) { return s.drive().displacement(t); },
              py::arg("t"), "U(t): the prescribed displacement of the most-pulled upper node [m]")
