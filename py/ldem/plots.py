@@ -62,28 +62,33 @@ def central_slice(sim, axis: int = 1):
 
 
 def draw_slice(ax, seg, state) -> dict:
-    """Draws segments coloured by damage state (broken on top); returns the counts."""
+    """Draws segments coloured by damage state (broken on top); returns the counts.
+    Lines thin out (as 1/sqrt) beyond 12 modules across, so that large cubes stay legible."""
     counts = {}
+    if len(seg) == 0:
+        return {st: 0 for st in (UNDAMAGED, DAMAGED, BROKEN)}
+    modules = np.ptp(seg[:, :, 0]) / np.linalg.norm(seg[:, 1] - seg[:, 0], axis=1).max()
+    thin = min(1.0, np.sqrt(12.0 / max(modules, 1.0)))
     for st, lw in ((UNDAMAGED, 0.5), (DAMAGED, 1.2), (BROKEN, 1.8)):
         sel = state == st
         counts[st] = int(sel.sum())
-        ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw))
+        ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw * thin))
     ax.set_aspect("equal")
     ax.autoscale()
     ax.set_xticks([]), ax.set_yticks([])
     return counts
 
 
-def state_legend(ax, counts=None) -> None:
-    handles = [Line2D([], [], color=STATE_COLOURS[s], lw=2,
-                      label=STATE_NAMES[s] + (f" ({counts[s]})" if counts else ""))
-               for s in (UNDAMAGED, DAMAGED, BROKEN)]
-    ax.legend(handles=handles, loc="upper center", bbox_to_anchor=(0.5, -0.01), ncol=3, fontsize=8, frameon=False)
+def state_handles(counts=None) -> list:
+    """Legend entries of the three damage states (with their counts, if given)."""
+    return [Line2D([], [], color=STATE_COLOURS[s], lw=2, label=STATE_NAMES[s] + (f" ({counts[s]})" if counts else ""))
+            for s in (UNDAMAGED, DAMAGED, BROKEN)]
 
 
 def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
     fig, ax = plt.subplots(figsize=(5.6, 6.0))
-    state_legend(ax, draw_slice(ax, seg, state))
+    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center", bbox_to_anchor=(0.5, -0.01),
+              ncol=3, fontsize=8, frameon=False)
     ax.set_title(title or "central slice", fontsize=9)
     fig.tight_layout()
     fig.savefig(path, dpi=130)

@@ -18,13 +18,14 @@ def _case_dir(out, test):
     return os.path.join(out, "cases", case_name(test))
 
 
-def mean_curve(curves: Sequence[dict], column: str, scale=1.0, n: int = 400):
+def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400):
     """Mean of a curve column over specimens on a common mean-strain grid. A
-    specimen that split early carries on at its last value (about 0 for the
-    stress, the final energy for the fracture energy)."""
+    specimen that stopped early carries on at after_end (0 for the stress of a
+    split specimen), or at its last value (the final fracture energy)."""
     top = max(c["mean_strain"][-1] for c in curves)
     grid = np.linspace(0.0, top, n)
-    ys = [np.interp(grid, c["mean_strain"], c[column] * scale, right=(c[column] * scale)[-1]) for c in curves]
+    ys = [np.interp(grid, c["mean_strain"], c[column] * scale,
+                    right=(c[column] * scale)[-1] if after_end is None else after_end) for c in curves]
     return grid, np.mean(ys, axis=0)
 
 
@@ -54,7 +55,7 @@ def specimen_curves_figure(groups, load, sizes, path):
         curves = groups[(load, size)]
         for k, c in enumerate(curves, start=1):
             ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=0.8, alpha=0.6, label=f"seed {k}")
-        x, y = mean_curve(curves, "stress_MPa")
+        x, y = mean_curve(curves, "stress_MPa", after_end=0.0)
         ax.plot(x * 1e4, y, "k", lw=2.2, label="mean")
         _strain_axis(ax, "normal stress [MPa]")
         ax.set_title(f"{size:g} m cube, {load}")
@@ -65,7 +66,7 @@ def specimen_curves_figure(groups, load, sizes, path):
 def mean_curves_figure(groups, load, sizes, path):
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for size in sizes:
-        x, y = mean_curve(groups[(load, size)], "stress_MPa")
+        x, y = mean_curve(groups[(load, size)], "stress_MPa", after_end=0.0)
         ax.plot(x * 1e4, y, lw=1.6, label=f"{size:g} m")
     _strain_axis(ax, "mean normal stress [MPa]")
     ax.set_title(f"mean stress-strain curves, {load} loading")
@@ -89,15 +90,17 @@ def fracture_energy_figure(out, tests, groups, load, sizes, path):
 
 def cracks_figure(out, tests, load, sizes, path, seed=1):
     """Central slices at the end of the run, one specimen per size."""
-    fig, axes = plt.subplots(1, len(sizes), figsize=(3.4 * len(sizes), 3.9), squeeze=False)
+    fig, axes = plt.subplots(1, len(sizes), figsize=(4.6 * len(sizes), 5.0), squeeze=False)
     for ax, size in zip(axes[0], sizes):
         t = next(t for t in tests if t.load == load and t.size == size and t.seed == seed)
         with np.load(os.path.join(_case_dir(out, t), "slice.npz")) as z:
             plots.draw_slice(ax, z["segments"], z["states"])
         ax.set_title(f"{size:g} m, seed {seed}", fontsize=9)
-    plots.state_legend(axes[0][len(sizes) // 2])
-    fig.suptitle(f"central slices at the end of the test, {load} loading", fontsize=10)
-    _save(fig, path)
+    fig.legend(handles=plots.state_handles(), loc="lower center", ncol=3, fontsize=10, frameon=False)
+    fig.suptitle(f"central slices at the end of the test, {load} loading", fontsize=11)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    fig.savefig(path, dpi=130)
+    plt.close(fig)
 
 
 def fractal_figure(table, fits, path):
