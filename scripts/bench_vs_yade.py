@@ -16,6 +16,7 @@ import time
 import ldem.yade as ly
 from ldem import _core
 from ldem.cli import bench_program
+from ldem.scene import exit_with
 
 
 def parse(argv):
@@ -65,15 +66,4 @@ def main(argv):
     sys.stdout.flush()
 
 
-try:
-    main(sys.argv[1:])
-    code = 0
-except SystemExit as e:
-    code = e.code if isinstance(e.code, int) else 1
-except Exception:
-    import traceback
-    traceback.print_exc()
-    code = 1
-import os  # noqa: E402
-
-os._exit(code)  # yade -x would otherwise drop into its shell or ignore the code
+exit_with(main, sys.argv[1:])

@@ -20,6 +20,7 @@ import time
 # ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
 import ldem.yade as ly
 from ldem import _core
+from ldem.scene import exit_with
 
 PEAK_TOL, STRAIN_TOL = 0.02, 0.05
 
@@ -115,14 +116,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    code = 1
-    try:
-        code = main(sys.argv[1:])
-    except SystemExit as e:  # argparse
-        code = e.code if isinstance(e.code, int) else 2
-    except Exception:
-        import traceback
-        traceback.print_exc()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)  # sys.exit from inside yade -x can hang in YADE's shutdown; exit with the code directly
+    exit_with(main, sys.argv[1:])

@@ -69,6 +69,8 @@ import os
 import sys
 import time
 
+from ldem.scene import exit_with
+
 # uniax.py's ratio of the shear cohesion to the contact's tensile strength
 SIGMA_T_RATIO = 3.5e6 / (24e9 * 1e-4)
 # Calibrated with --calibrate on the 0.12 m cube, seed 1, radius 8 mm (see the docstring).
@@ -387,14 +389,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    code = 1
-    try:
-        code = main(sys.argv[1:])
-    except SystemExit as e:  # argparse
-        code = e.code if isinstance(e.code, int) else 2
-    except Exception:
-        import traceback
-        traceback.print_exc()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)  # sys.exit from inside yade -x can hang in YADE's shutdown
+    exit_with(main, sys.argv[1:])

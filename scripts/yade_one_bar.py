@@ -46,12 +46,12 @@ O(1e-3..1).
 Run: yade-double -n -x scripts/yade_one_bar.py
 """
 import math
-import os
 import sys
 
 # ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
 import ldem.yade as ly
 from ldem import _core
+from ldem.scene import exit_with
 
 TOL = 1e-12
 SEGMENT_STEPS = 40
@@ -187,12 +187,4 @@ def main():
 
 
 if __name__ == "__main__":
-    code = 1
-    try:
-        code = main()
-    except Exception:
-        import traceback
-        traceback.print_exc()
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(code)  # yade -x would otherwise stay in its own shutdown path
+    exit_with(main)

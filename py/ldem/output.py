@@ -1,7 +1,6 @@
 """Files of a run: the folder, the progress bar, summary.json, bars.vtu and the pictures."""
 from __future__ import annotations
 
-import json
 import os
 import sys
 

@@ -43,3 +43,21 @@ def parameters(defaults: dict, argv=None) -> dict:
 def _yade_threads() -> int:
     from yade import O  # noqa: F401
     return O.numThreads
+
+
+def exit_with(main, *args) -> None:
+    """Runs main(*args) and ends the process with its exit code (None counts as
+    0; an exception prints its traceback and gives 1; argparse's SystemExit
+    keeps its code). Scripts run by `yade-double -x` end this way, because a
+    plain sys.exit there can hang in YADE's shutdown or drop into its shell."""
+    code = 1
+    try:
+        code = main(*args) or 0
+    except SystemExit as e:
+        code = e.code if isinstance(e.code, int) else 2
+    except Exception:
+        import traceback
+        traceback.print_exc()
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)

@@ -1,7 +1,6 @@
 """The command line: bad input is one line and exit code 2; a run writes every file."""
 import csv
 import json
-import os
 
 import numpy as np
 import pytest
