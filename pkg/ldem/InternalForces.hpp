@@ -80,16 +80,11 @@ struct HillerborgBars {
                     double& gy, double& gz) const {
         const double d[3] = {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz};
         const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        // barStrain and 1/l from one division (divisions bound this loop):
-        // q = 1/(l (l + L) L) gives 1/((l + L) L) = l q and 1/l = (l + L) L q.
-        const double lL = (l + fam.L) * fam.L;
-        const double q = 1.0 / (l * lL);
-        const double eps =
-            (2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz) * (l * q);
+        const double eps = barStrain(fam.d0.data(), fam.L, dux, duy, duz, l);
         const double k = updateDamage(kappa[b], eps);
         kappa[b] = k;
         // Tension (F > 0) pulls node A towards node B: along +d.
-        const double s = hillerborgForce(eps, k, EA, epsP, epsR[b]) * (lL * q);
+        const double s = hillerborgForce(eps, k, EA, epsP, epsR[b]) / l;
         gx = s * d[0], gy = s * d[1], gz = s * d[2];
     }
 };
