@@ -1,9 +1,7 @@
 #include "ldem/Simulation.hpp"
 
 #include <cmath>
-#include <deque>
 #include <sstream>
-#include <utility>
 
 #include "ldem/Integrator.hpp"
 #include "ldem/Parallel.hpp"
@@ -21,6 +19,14 @@ void RunParams::validate() const {
     if (!(splitWindow >= 0) || !std::isfinite(splitWindow)) fail("split window must be >= 0 s");
     if (recordEvery < 0) fail("record interval must be >= 0 steps");
     if (threads < 0) fail("threads must be >= 0");
+}
+
+bool SplitDetector::update(double time, double stress, double peakStress, std::int64_t broken) {
+    recent_.emplace_back(time, stress);
+    while (recent_.front().first < time - window_) recent_.pop_front();
+    double sum = 0;
+    for (const auto& r : recent_) sum += r.second;
+    return broken > 0 && time >= window_ && sum / recent_.size() < fraction_ * peakStress;
 }
 
 Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
@@ -138,7 +144,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     setThreads(run_.threads);
     RunSummary s;
     double maxWork = 0, maxResidual = 0;
-    std::deque<std::pair<double, double>> recent;  // (time, lower-face stress) of the records in the split window
+    SplitDetector split(splitWindow_, run_.stopFraction);
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
@@ -164,18 +170,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         s.fractureEnergy = p.fracture;
         s.steps = step_;
         const bool keepGoing = !observer || observer(p);
-        // Split: bars have broken and the lower face no longer carries load. When
-        // the last ligaments snap, the reaction rings around zero for a while, and
-        // a single record below the threshold would stop the run while ligaments
-        // still hold (and still dissipate): the stress averaged over the split
-        // window (two fundamental periods) must be below the threshold.
-        recent.emplace_back(p.time, p.stressBottom);
-        while (recent.front().first < p.time - splitWindow_) recent.pop_front();
-        double windowSum = 0;
-        for (const auto& r : recent) windowSum += r.second;
-        const bool windowFull = p.time >= splitWindow_;
-        if (p.broken > 0 && windowFull && windowSum / recent.size() < run_.stopFraction * s.peakStress)
-            s.stopReason = "split";
+        if (split.update(p.time, p.stressBottom, s.peakStress, p.broken)) s.stopReason = "split";
         else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
         else if (!keepGoing) s.stopReason = "stopped";
         if (!s.stopReason.empty()) break;

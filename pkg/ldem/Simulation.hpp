@@ -4,9 +4,11 @@
 // InternalForces (bars), Integrator (nodes) and Loading (prescribed DOFs).
 #pragma once
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ldem/Integrator.hpp"
@@ -49,6 +51,23 @@ struct RunSummary {
     double energyBalanceError = 0;  // max |residual| / max external work over the records
     std::int64_t steps = 0;
     std::string stopReason;      // "split" or "final_strain"
+};
+
+// The split test, fed one record at a time (Simulation::run, and ldem.yade for
+// the same specimen in YADE): bars have broken and the lower face no longer
+// carries load. When the last ligaments snap the reaction rings around zero for
+// a while, and a single record below the threshold would stop a run while
+// ligaments still hold (and still dissipate), so the stress averaged over the
+// last `window` seconds (two fundamental periods by default) must be below
+// fraction x peak.
+class SplitDetector {
+public:
+    SplitDetector(double window, double fraction) : window_(window), fraction_(fraction) {}
+    bool update(double time, double stress, double peakStress, std::int64_t broken);
+
+private:
+    double window_, fraction_;
+    std::deque<std::pair<double, double>> recent_;  // (time, stress) of the records in the window
 };
 
 // Thrown when the integration blows up (NaN, or energy created from nothing).

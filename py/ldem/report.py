@@ -103,9 +103,9 @@ def cracks_figure(out, tests, load, sizes, path, seed=1):
     plt.close(fig)
 
 
-def fractal_figure(table, fits, path):
+def fractal_figure(table, cases, fits, path):
+    """Mean U_num per size (and each case's, faint) with the fitted law, log-log."""
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    cases = read_csv(os.path.join(os.path.dirname(path), "cases.csv"))
     for load, fit in fits.items():
         rows = [r for r in table if r["load"] == load]
         b = np.array([r["size_m"] for r in rows])
@@ -151,7 +151,7 @@ def _pct(a, b):
     return f"{100 * (a - b) / b:+.1f} %"
 
 
-def size_effect_report(out, tests, table, fits) -> None:
+def size_effect_report(out, tests, cases, table, fits) -> None:
     loads = list(dict.fromkeys(t.load for t in tests))
     sizes = sorted({t.size for t in tests})
     groups = _by_case(out, tests)
@@ -167,7 +167,7 @@ def size_effect_report(out, tests, table, fits) -> None:
                  (f"cracks_{load}.png", f"crack pictures (central slice, seed 1), {load}"),
                  (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain, {load}")]
     if fits:
-        fractal_figure(table, fits, os.path.join(out, "fractal.png"))
+        fractal_figure(table, cases, fits, os.path.join(out, "fractal.png"))
         figs.append(("fractal.png", "U_num against size, fractal law"))
     write_report(out, tests, table, fits, figs)
 
@@ -192,7 +192,7 @@ def write_report(out, tests, table, fits, figs) -> None:
               ["damping", f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"],
               ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
                             "same L0)"],
-              ["stop", f"bars broke and the stress averaged over "
+              ["stop", "bars broke and the stress averaged over "
                        + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
                        + f" < {p['stop_fraction']:g} x peak, or mean strain {p['final_strain']:g}"],
               ["threads per case", str(first["threads"])],

@@ -349,7 +349,7 @@ def cmd_size_effect(args) -> int:
     with open(os.path.join(args.out, "fractal.json"), "w") as f:
         json.dump(fits, f, indent=2)
     if not args.no_report:
-        report.size_effect_report(args.out, tests, table, fits)
+        report.size_effect_report(args.out, tests, rows, table, fits)
     print(f"study: {len(tests)} cases in {time.perf_counter() - t0:.0f} s; wrote {args.out}/summary.csv, cases.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for r in table:

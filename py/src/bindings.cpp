@@ -89,6 +89,11 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("steps", &RunSummary::steps)
         .def_readonly("stop_reason", &RunSummary::stopReason);
 
+    py::class_<SplitDetector>(m, "SplitDetector", "the split test of Simulation.run, one record at a time")
+        .def(py::init<double, double>(), py::arg("window"), py::arg("fraction"))
+        .def("update", &SplitDetector::update, py::arg("time"), py::arg("stress"), py::arg("peak_stress"),
+             py::arg("broken"));
+
     py::class_<CurveCsvWriter>(m, "CurveCsvWriter")
         .def(py::init<const std::string&>())
         .def("write", &CurveCsvWriter::write)
