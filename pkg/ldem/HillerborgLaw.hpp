@@ -40,10 +40,16 @@ inline double secantRatio(double kappa, double epsP, double epsR) {
     return kappa <= epsP ? 1.0 : (r > 0.0 ? r : 0.0);
 }
 
+// F / (EA eps) at strain eps with damage kappa >= eps (call updateDamage
+// first): the secant ratio s(kappa) in tension, 1 in compression.
+inline double forceRatio(double eps, double kappa, double epsP, double epsR) {
+    return eps > 0.0 ? secantRatio(kappa, epsP, epsR) : 1.0;
+}
+
 // Axial force (tension positive) at strain eps with damage kappa >= eps
 // (call updateDamage first): F = EA eps s(kappa) in tension, EA eps in compression.
 inline double hillerborgForce(double eps, double kappa, double EA, double epsP, double epsR) {
-    return eps > 0.0 ? EA * eps * secantRatio(kappa, epsP, epsR) : EA * eps;
+    return EA * eps * forceRatio(eps, kappa, epsP, epsR);
 }
 
 // kappa = max over history of eps (never negative).

@@ -15,11 +15,8 @@ void forEachBarStrainInRow(const Lattice& lat, const Field3& u, std::int64_t r, 
     const BarFamily& fam = lat.families[row.family];
     for (int p = 0; p < row.count; ++p) {
         const auto a = row.nodeA + p, b = row.nodeB + p;
-        const double dux = u.x[b] - u.x[a], duy = u.y[b] - u.y[a], duz = u.z[b] - u.z[a];
-        const double d[3] = {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz};
-        const double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        const double EA = fam.EA * ((p == 0 || p == row.count - 1) ? row.endShare : row.share);
-        perBar(row.first + p, fam, EA, barStrain(fam.d0.data(), fam.L, dux, duy, duz, l));
+        const BarStretch s = barStretch(fam, u.x[b] - u.x[a], u.y[b] - u.y[a], u.z[b] - u.z[a]);
+        perBar(row.first + p, fam, fam.EA * row.shareAt(p), s.strain());
     }
 }
 
@@ -61,18 +58,32 @@ void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f) {
 }
 
 void computeInternalForces(const Lattice& lat, const Field3& u, BarState& bars, BarForceBuffers& g, Field3& f) {
-    layeredForces(lat, u, g, f, HillerborgBars{bars.kappa.data(), bars.epsR.data(), bars.epsP}, [](int) {});
+    layeredForces(lat, u, g, f, HillerborgBars(bars), [](int) {});
 }
 
-void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers& g, Field3& y) {
-    const auto linear = [](std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz,
-                           double& gx, double& gy, double& gz) {
-        // Force on node A of a bar of stiffness EA/L, negated for K x: -(EA/L)(n.du)n.
+namespace {
+// The undamaged, small-displacement stiffness as a bar law (never inelastic):
+// force on node A of a bar of stiffness EA/L, negated for K x: -(EA/L)(n.du)n.
+struct LinearBars {
+    LinearBars forRow(std::int32_t, std::int64_t) const { return *this; }
+    bool softening() const { return false; }
+    void markSoftening() const {}
+    double elastic(int p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx, double& gy,
+                   double& gz) const {
+        (*this)(p, fam, EA, dux, duy, duz, gx, gy, gz);
+        return -1;
+    }
+    void operator()(int, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx, double& gy,
+                    double& gz) const {
         const double n[3] = {fam.d0[0] / fam.L, fam.d0[1] / fam.L, fam.d0[2] / fam.L};
         const double s = -EA / fam.L * (n[0] * dux + n[1] * duy + n[2] * duz);
         gx = s * n[0], gy = s * n[1], gz = s * n[2];
-    };
-    layeredForces(lat, x, g, y, linear, [](int) {});
+    }
+};
+}  // namespace
+
+void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers& g, Field3& y) {
+    layeredForces(lat, x, g, y, LinearBars{}, [](int) {});
 }
 
 BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bars) {

@@ -61,22 +61,21 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
     }
 
     // Random G_f -> limit strain of each bar (the field itself is not kept).
-    bars_.epsP = mat_.epsP;
-    bars_.epsR.resize(lat_.numBars());
     {
         const std::vector<double> gf = fractureEnergyField();
+        std::vector<double> epsR(lat_.numBars());
         for (const BarRow& row : lat_.barRows) {
             const BarFamily& fam = lat_.families[row.family];
             for (int p = 0; p < row.count; ++p) {
                 const std::int64_t b = row.first + p;
                 const double share = row.shareAt(p);
                 const LimitStrain ls = limitStrain(fam.Af * share, gf[b], fam.EA * share, mat_.epsP, fam.L);
-                bars_.epsR[b] = ls.epsR;
+                epsR[b] = ls.epsR;
                 clamped_ += ls.clamped;
             }
         }
+        bars_ = BarState(lat_, mat_.epsP, std::move(epsR));
     }
-    bars_.kappa.assign(lat_.numBars(), 0.0);
     u_ = v_ = f_ = Field3(lat_.numNodes());
     cd_ = CentralDifference(dt_, Df_);
     layerDamping_.assign(lat_.numLayers(), 0.0);
@@ -109,7 +108,7 @@ CurvePoint Simulation::measure() const {
 }
 
 void Simulation::step() {
-    layeredForces(lat_, u_, g_, f_, HillerborgBars{bars_.kappa.data(), bars_.epsR.data(), bars_.epsP},
+    layeredForces(lat_, u_, g_, f_, HillerborgBars(bars_),
                   [this](int m) { layerDamping_[m] = advanceNodes(m); });
     finishStep();
 }

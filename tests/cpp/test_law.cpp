@@ -180,20 +180,18 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
     const std::int64_t nb = lat.numBars();
     const BarTable t = listBars(lat);
     const auto x0 = nodePositions(lat);
-    BarState bars;
-    bars.epsP = m.epsP;
-    bars.kappa.assign(nb, 0.0);
-    bars.epsR.resize(nb);
+    std::vector<double> epsR(nb);
     double sumAfGf = 0, maxEpsR = 0, minEpsR = 1;
     for (std::int64_t b = 0; b < nb; ++b) {
         const double Gf = 50 + 100 * hashedUniform(3, b, 0);  // in [50, 150]: no clamped bar
         const LimitStrain ls = limitStrain(t.Af[b], Gf, t.EA[b], m.epsP, t.L[b]);
         ASSERT_FALSE(ls.clamped);
-        bars.epsR[b] = ls.epsR;
+        epsR[b] = ls.epsR;
         sumAfGf += t.Af[b] * Gf;
         maxEpsR = std::max(maxEpsR, ls.epsR);
         minEpsR = std::min(minEpsR, ls.epsR);
     }
+    BarState bars(lat, m.epsP, std::move(epsR));
     Field3 u(lat.numNodes()), f(lat.numNodes());
     BarForceBuffers g;
     // Generalised force conjugate to s: dW = -f . x0 ds (the force the loader applies is -f).
@@ -255,4 +253,66 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
     e = checkBalance("compressed after rupture");
     EXPECT_NEAR(Q, -1e-4 * Qel / (-0.5 * s1), 1e-6 * std::abs(Qel));
     EXPECT_NEAR(e.fracture, sumAfGf, 1e-12 * sumAfGf);
+}
+
+// The force loop takes a fast path for the rows whose bars are all elastic
+// (InternalForces.hpp). Against the law applied bar by bar (long double, from
+// the bar table): on a lattice where a random third of the bars carry earlier
+// damage and the displacements put bars in every regime (elastic, loading
+// past eps_p, unloading on a secant, broken, compressed), in rows of every mix.
+TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
+    const Material m;
+    const Lattice lat = buildCubicLattice(7, 3, 4, 0.02, m);
+    const std::int64_t nb = lat.numBars();
+    const BarTable t = listBars(lat);
+    const auto x0 = nodePositions(lat);
+    std::vector<double> epsR(nb);
+    for (std::int64_t b = 0; b < nb; ++b) epsR[b] = m.epsP * (1 + 4 * hashedUniform(5, b, 0));
+    BarState bars(lat, m.epsP, epsR);
+    for (std::int64_t b = 0; b < nb; ++b)
+        if (hashedUniform(5, b, 1) < 1.0 / 3) bars.kappa[b] = m.epsP + (epsR[b] - m.epsP) * hashedUniform(5, b, 2);
+    const std::vector<double> kappa0 = bars.kappa;
+    Field3 u(lat.numNodes()), f(lat.numNodes());
+    // An expansion growing with z from -1.2 eps_p to 2.8 eps_p (so that the lower
+    // rows are elastic but for their damaged bars), with random displacements of
+    // +-eps_p L0 on top.
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+        const double s = m.epsP * (4 * x0[2][i] / 0.08 - 1.2), a = m.epsP * 0.02;
+        u.x[i] = s * x0[0][i] + a * (2 * hashedUniform(6, i, 0) - 1);
+        u.y[i] = s * x0[1][i] + a * (2 * hashedUniform(6, i, 1) - 1);
+        u.z[i] = s * x0[2][i] + a * (2 * hashedUniform(6, i, 2) - 1);
+    }
+    std::vector<long double> rx(lat.numNodes(), 0), ry(lat.numNodes(), 0), rz(lat.numNodes(), 0);
+    std::vector<double> kappa1(nb);
+    int regimes[5] = {};  // elastic, loading past eps_p, unloading, broken in tension, compressed
+    long double fmax = 0;
+    for (std::int64_t b = 0; b < nb; ++b) {
+        const auto a = t.n1[b], c = t.n2[b];
+        const auto& d0 = lat.families[t.family[b]].d0;  // exact A -> B (node positions are rounded)
+        const long double d[3] = {d0[0] + ((long double)u.x[c] - u.x[a]), d0[1] + ((long double)u.y[c] - u.y[a]),
+                                  d0[2] + ((long double)u.z[c] - u.z[a])};
+        const long double l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+        const double eps = double((l - t.L[b]) / t.L[b]);
+        const double k = updateDamage(kappa0[b], eps);
+        kappa1[b] = k > m.epsP ? k : kappa0[b];
+        const long double F = hillerborgForce(eps, k, t.EA[b], m.epsP, epsR[b]);
+        regimes[eps <= 0 ? 4 : k <= m.epsP ? 0 : k >= epsR[b] ? 3 : eps >= kappa0[b] ? 1 : 2]++;
+        for (int i = 0; i < 3; ++i) {
+            std::vector<long double>& r = i == 0 ? rx : i == 1 ? ry : rz;
+            r[a] += F * d[i] / l, r[c] -= F * d[i] / l;
+        }
+        fmax = std::max(fmax, std::abs(F));
+    }
+    for (int r : regimes) EXPECT_GT(r, int(nb / 10)) << "too few bars in some regime";
+    BarForceBuffers g;
+    for (int pass = 0; pass < 2; ++pass) {  // the second with the rows already marked softening
+        bars.kappa = kappa0;
+        computeInternalForces(lat, u, bars, g, f);
+        for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+            ASSERT_NEAR(f.x[i], double(rx[i]), 1e-10 * double(fmax)) << "pass " << pass << " node " << i;
+            ASSERT_NEAR(f.y[i], double(ry[i]), 1e-10 * double(fmax)) << "pass " << pass << " node " << i;
+            ASSERT_NEAR(f.z[i], double(rz[i]), 1e-10 * double(fmax)) << "pass " << pass << " node " << i;
+        }
+        for (std::int64_t b = 0; b < nb; ++b) ASSERT_NEAR(bars.kappa[b], kappa1[b], 1e-12 * m.epsP) << "bar " << b;
+    }
 }

@@ -183,10 +183,7 @@ TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
         EXPECT_NEAR(y.z[i], yv(3 * i + 2), 1e-12 * scale);
     }
     // Small displacements through the nonlinear force loop give -K x too.
-    BarState bars;
-    bars.epsP = 1.0;
-    bars.epsR.assign(lat.numBars(), 1.0);
-    bars.kappa.assign(lat.numBars(), 0.0);
+    BarState bars(lat, 1.0, std::vector<double>(lat.numBars(), 1.0));
     Field3 small(lat.numNodes()), f(lat.numNodes());
     const double a = 1e-9;  // displacement amplitude [m]: geometric nonlinearity ~ a / L0 = 5e-8
     for (std::int64_t i = 0; i < lat.numNodes(); ++i)
