@@ -22,7 +22,7 @@ import os
 import shutil
 import sys
 import time
-from typing import Callable, Iterable, List, Optional, Sequence
+from typing import Callable, Dict, Iterable, List, Optional, Sequence
 
 import numpy as np
 
@@ -49,6 +49,11 @@ def case_name(test: CubeTest) -> str:
         if v != getattr(default, f.name):
             name += f"_{f.name}{v:g}" if isinstance(v, float) else f"_{f.name}{v}"
     return name
+
+
+def case_dir(out: str, test: CubeTest) -> str:
+    """Where a study in directory out keeps the case of test."""
+    return os.path.join(out, "cases", case_name(test))
 
 
 def _comparable(params: dict) -> dict:
@@ -95,7 +100,7 @@ def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Opt
     if jobs < 1:
         raise ValueError(f"--jobs must be at least 1 (got {jobs})")
     prepare_dir(out)
-    dirs = [os.path.join(out, "cases", case_name(t)) for t in tests]
+    dirs = [case_dir(out, t) for t in tests]
     if len(set(dirs)) != len(dirs):
         raise ValueError("two cases of the study have the same parameters")
     todo = [i for i, (t, d) in enumerate(zip(tests, dirs)) if not is_finished(d, t)]
@@ -176,6 +181,33 @@ def load_curve(case_dir: str) -> dict:
     return {k: np.atleast_1d(data[k]) for k in data.dtype.names}
 
 
+def load_curves(out: str, tests: Sequence[CubeTest]) -> Dict[tuple, List[dict]]:
+    """(load, size) -> the curves of its specimens in study directory out, in test order."""
+    groups: Dict[tuple, List[dict]] = {}
+    for t in tests:
+        groups.setdefault((t.load, t.size), []).append(load_curve(case_dir(out, t)))
+    return groups
+
+
+def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400):
+    """Mean of a curve column over specimens on a common mean-strain grid of n
+    points. A specimen that stopped early carries on at after_end (0 for the
+    stress of a split specimen), or at its last value (the final fracture energy)."""
+    top = max(c["mean_strain"][-1] for c in curves)
+    grid = np.linspace(0.0, top, n)
+    ys = [np.interp(grid, c["mean_strain"], c[column] * scale,
+                    right=(c[column] * scale)[-1] if after_end is None else after_end) for c in curves]
+    return grid, np.mean(ys, axis=0)
+
+
+def mean_curve_peak(curves: Sequence[dict]) -> tuple:
+    """(peak stress [MPa], its mean strain) of the specimens' mean stress-strain
+    curve, on a grid finer than the records (about 1e-8 in strain)."""
+    grid, stress = mean_curve(curves, "stress_MPa", after_end=0.0, n=20001)
+    i = int(np.argmax(stress))
+    return float(stress[i]), float(grid[i])
+
+
 # -- the studies ---------------------------------------------------------------
 def size_effect_tests(sizes: Iterable[float], seeds: int, loads: Iterable[str], **common) -> List[CubeTest]:
     return [CubeTest(size=s, load=ld, seed=k, **common) for ld in loads for s in sizes for k in range(1, seeds + 1)]
@@ -213,12 +245,16 @@ def mean_cv(values) -> tuple:
 
 SUMMARY_COLUMNS = ("load", "size_m", "seeds", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean",
                    "strain_at_peak_cv", "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv", "ca_corrected",
-                   "ref_peak_stress_MPa", "ref_strain_at_peak", "wall_s_mean")
+                   "ref_peak_stress_MPa", "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak",
+                   "wall_s_mean")
 
 
-def aggregate(rows: Sequence[dict], c_a: float) -> List[dict]:
+def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, List[dict]]] = None) -> List[dict]:
     """One row per (load, size): means and CVs over the seeds, the corrected
-    c_a = c_a x E[U_num/U_min], and Table 3's values where the study gives them."""
+    c_a = c_a x E[U_num/U_min], and Table 3's values where the study gives them.
+    With the specimens' curves ((load, size) -> curves), also the peak of their
+    mean curve: the mean of the peaks is not the peak of the mean curve, and
+    the study does not say which of the two its Table 3 gives."""
     out = []
     for load in dict.fromkeys(r["load"] for r in rows):
         for size in sorted({r["size_m"] for r in rows if r["load"] == load}):
@@ -232,7 +268,11 @@ def aggregate(rows: Sequence[dict], c_a: float) -> List[dict]:
                         "U_num_J_mean": float(np.mean([r["U_num_J"] for r in g])), "U_min_J": g[0]["U_min_J"],
                         "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv, "ca_corrected": c_a * ratio,
                         "ref_peak_stress_MPa": ref[0] if ref else "", "ref_strain_at_peak": ref[1] if ref else "",
+                        "mean_curve_peak_MPa": "", "mean_curve_strain_at_peak": "",
                         "wall_s_mean": float(np.mean([r["wall_s"] for r in g]))})
+            if curves is not None:
+                out[-1]["mean_curve_peak_MPa"], out[-1]["mean_curve_strain_at_peak"] = \
+                    mean_curve_peak(curves[(load, size)])
     return out
 
 
@@ -339,7 +379,7 @@ def cmd_size_effect(args) -> int:
                           progress=False if args.no_progress else None)
     rows = [case_row(s) for s in summaries]
     write_csv(os.path.join(args.out, "cases.csv"), rows, CASE_COLUMNS)
-    table = aggregate(rows, tests[0].c_a)
+    table = aggregate(rows, tests[0].c_a, load_curves(args.out, tests))
     write_csv(os.path.join(args.out, "summary.csv"), table, SUMMARY_COLUMNS)
     fits = {}
     for load in dict.fromkeys(r["load"] for r in table):

@@ -40,6 +40,22 @@ def test_mean_cv_and_aggregation():
     assert (r["ref_peak_stress_MPa"], r["ref_strain_at_peak"]) == (2.45, 1.47e-4)  # Table 3
 
 
+def test_peak_of_the_mean_curve():
+    # Two specimens: a peak of 1 MPa at 1e-4 (then split), and 3 MPa at 3e-4.
+    # Mean of the peaks: 2 MPa at 2e-4; the mean curve peaks at 3e-4 with 1.5 MPa
+    # (the first specimen carries nothing after it split).
+    a = {"mean_strain": np.array([0.0, 1e-4, 1.1e-4]), "stress_MPa": np.array([0.0, 1.0, 0.0])}
+    b = {"mean_strain": np.array([0.0, 3e-4, 3.3e-4]), "stress_MPa": np.array([0.0, 3.0, 0.0])}
+    peak, strain = study.mean_curve_peak([a, b])
+    assert peak == pytest.approx(1.5, rel=1e-3)
+    assert strain == pytest.approx(3e-4, rel=1e-3)
+    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": e, "U_num_J": 1.0,
+             "U_min_J": 1.44, "U_ratio": 1 / 1.44, "wall_s": 1.0} for p, e in ((1.0, 1e-4), (3.0, 3e-4))]
+    (r,) = study.aggregate(rows, c_a=0.1385, curves={("uniform", 0.12): [a, b]})
+    assert (r["peak_stress_MPa_mean"], r["strain_at_peak_mean"]) == (pytest.approx(2.0), pytest.approx(2e-4))
+    assert (r["mean_curve_peak_MPa"], r["mean_curve_strain_at_peak"]) == (peak, strain)
+
+
 def test_case_names_carry_non_default_parameters():
     assert study.case_name(CubeTest(size=0.24, seed=3)) == "uniform_0.24m_s3"
     assert study.case_name(CubeTest(size=0.24, seed=3, zeta=2.0, threads=2)) == "uniform_0.24m_s3_zeta2"
