@@ -122,7 +122,7 @@ struct HillerborgBars {
     bool softening() const { return *softeningRow; }
     void markSoftening() const { *softeningRow = 1; }
 
-    double elastic(int p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
+    double elastic(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                    double& gy, double& gz) const {
         const BarStretch s = barStretch(fam, dux, duy, duz);
         // Tension (F > 0) pulls node A towards node B: along +d.
@@ -130,7 +130,7 @@ struct HillerborgBars {
         gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
         return updateDamage(kappa[p], s.strain()) - epsP;
     }
-    void operator()(int p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
+    void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                     double& gy, double& gz) const {
         const BarStretch s = barStretch(fam, dux, duy, duz);
         const double eps = s.strain();
@@ -155,17 +155,20 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
         const double EA = fam.EA * row.share, EAend = fam.EA * row.endShare;
         const Law rowLaw = law.forRow(r, row.first);
         if (!rowLaw.softening()) {
-            // (a max reduction over doubles: measured faster than an int | reduction)
+            // (a max reduction over doubles: measured faster than an int | reduction;
+            // a 64-bit index: one vector of doubles per iteration, where an int index
+            // made the compiler take 16 bars at once and rows of 12 to 25 bars
+            // fell mostly into its scalar remainder)
             double excess = -1;
 #pragma omp simd reduction(max : excess)
-            for (int p = 0; p < n; ++p)
+            for (std::int64_t p = 0; p < n; ++p)
                 excess = std::max(excess, rowLaw.elastic(p, fam, (p == 0 || p == n - 1) ? EAend : EA, bx[p] - ax[p],
                                                          by[p] - ay[p], bz[p] - az[p], gx[p], gy[p], gz[p]));
             if (excess <= 0) continue;
             rowLaw.markSoftening();
         }
 #pragma omp simd
-        for (int p = 0; p < n; ++p)
+        for (std::int64_t p = 0; p < n; ++p)
             rowLaw(p, fam, (p == 0 || p == n - 1) ? EAend : EA, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p], gx[p],
                    gy[p], gz[p]);
     }
