@@ -15,9 +15,10 @@ FAST = dict(size=0.08, strain_rate=0.1, final_strain=1.5e-3)
 
 
 def run_cli(*args, cwd=None):
+    """Runs the `ldem` command itself (py/bin/ldem, what `ldem` on PATH is) on the build tree."""
     env = dict(os.environ, PYTHONPATH=BUILD_PY)
-    return subprocess.run(["/usr/bin/python3", "-m", "ldem", *args], capture_output=True, text=True,
-                          env=env, cwd=cwd, timeout=600)
+    return subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "py", "bin", "ldem"), *args], capture_output=True,
+                          text=True, env=env, cwd=cwd, timeout=600)
 
 
 @pytest.fixture
