@@ -198,9 +198,8 @@ def write_report(out, tests, table, fits, figs) -> None:
                          _pct(r["mean_curve_strain_at_peak"], r["ref_strain_at_peak"]) if ref else "-"])
         if rows:
             md += ["The peak of the mean curve (the specimens' curves averaged at equal mean strain, then its "
-                   "maximum) is another reading of \"mean peak\": the mean of the peaks lies above it, and the "
-                   "strain of the mean curve's peak lies before the mean of the strains at the peaks, because "
-                   "the specimens peak at different strains.", "",
+                   "maximum) is another reading of \"mean peak\". It is never above the mean of the peaks, and "
+                   "the two readings differ most where the specimens' strains at their peaks scatter most.", "",
                    _md_table(["size [m]", "peak of the mean curve [MPa]", "against study", "its strain",
                               "against study"], rows), ""]
     md += ["## Fracture energy", "",
