@@ -11,7 +11,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import plots  # noqa: E402
-from .study import B0, case_dir, load_curve, load_curves, load_summary, mean_curve, read_csv  # noqa: E402
+from .study import B0, case_dir, load_curve, load_summary, mean_curve, read_csv  # noqa: E402
 
 
 def _save(fig, path):
@@ -128,10 +128,10 @@ def _pct(a, b):
     return f"{100 * (a - b) / b:+.1f} %"
 
 
-def size_effect_report(out, tests, cases, table, fits) -> None:
+def size_effect_report(out, tests, cases, table, fits, groups) -> None:
+    """report.md and the figures; groups: (load, size) -> the specimens' curves (study.load_curves)."""
     loads = list(dict.fromkeys(t.load for t in tests))
     sizes = sorted({t.size for t in tests})
-    groups = load_curves(out, tests)
     figs = []
     for load in loads:
         ends = sorted({sizes[0], sizes[-1]})

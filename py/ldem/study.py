@@ -379,7 +379,8 @@ def cmd_size_effect(args) -> int:
                           progress=False if args.no_progress else None)
     rows = [case_row(s) for s in summaries]
     write_csv(os.path.join(args.out, "cases.csv"), rows, CASE_COLUMNS)
-    table = aggregate(rows, tests[0].c_a, load_curves(args.out, tests))
+    curves = load_curves(args.out, tests)
+    table = aggregate(rows, tests[0].c_a, curves)
     write_csv(os.path.join(args.out, "summary.csv"), table, SUMMARY_COLUMNS)
     fits = {}
     for load in dict.fromkeys(r["load"] for r in table):
@@ -389,7 +390,7 @@ def cmd_size_effect(args) -> int:
     with open(os.path.join(args.out, "fractal.json"), "w") as f:
         json.dump(fits, f, indent=2)
     if not args.no_report:
-        report.size_effect_report(args.out, tests, rows, table, fits)
+        report.size_effect_report(args.out, tests, rows, table, fits, curves)
     print(f"study: {len(tests)} cases in {time.perf_counter() - t0:.0f} s; wrote {args.out}/summary.csv, cases.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for r in table:
