@@ -18,13 +18,23 @@ void LoadingParams::validate() const {
         throw std::invalid_argument("strain rate must be positive (got " + std::to_string(strainRate) + " 1/s)");
     if (!(rampTime >= 0) || !std::isfinite(rampTime))
         throw std::invalid_argument("ramp time must be >= 0 (got " + std::to_string(rampTime) + " s)");
+    if (!(lossSpeedup >= 1) || !std::isfinite(lossSpeedup))
+        throw std::invalid_argument("speed-up after load loss must be >= 1 (got " + std::to_string(lossSpeedup) + ")");
 }
 
-double Drive::displacement(double t) const {
+namespace {
+// Integral over [0, t] of a velocity that rises from 0 to 1 as (1 - cos(pi t/t_r))/2.
+double smoothRampIntegral(double t, double tr) {
     constexpr double pi = 3.14159265358979323846;
     if (t <= 0) return 0;
-    if (t < rampTime) return 0.5 * v0 * (t - rampTime / pi * std::sin(pi * t / rampTime));
-    return v0 * (t - 0.5 * rampTime);
+    if (t < tr) return 0.5 * (t - tr / pi * std::sin(pi * t / tr));
+    return t - 0.5 * tr;
+}
+}  // namespace
+
+double Drive::displacement(double t) const {
+    const double U = v0 * smoothRampIntegral(t, rampTime);
+    return t <= speedupStart ? U : U + (speedup - 1) * v0 * smoothRampIntegral(t - speedupStart, rampTime);
 }
 
 Constraints cubeTestConstraints(const Lattice& lat, const LoadingParams& p) {

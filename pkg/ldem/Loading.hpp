@@ -7,8 +7,13 @@
 //   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2   for t < t_r  (velocity ramps
 //          v0 (t - t_r / 2)                        for t >= t_r  up as 1 - cos)
 // so velocity and acceleration start at zero. v0 = strain rate x height.
+// Once the load is lost the drive can speed up by a factor S, with the same
+// smooth ramp starting at t_s:  U(t) + (S - 1) U(t - t_s). The specimen then
+// hangs on mechanisms that carry almost no force, and separation needs strains
+// far beyond the peak; a faster drive reaches them in fewer steps.
 #pragma once
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -26,12 +31,15 @@ struct LoadingParams {
     double rampTime = 0.0;         // smooth start duration [s]; 0 = two fundamental periods
     bool topLateralFree = true;    // upper nodes free in x, y (else held at zero)
     bool bottomLateralFree = false;  // lower nodes on rollers (only rigid motion pinned)
+    double lossSpeedup = 20.0;     // drive velocity factor once the load is lost [-]
     void validate() const;
 };
 
 struct Drive {
     double v0 = 0;        // final velocity of the most-pulled point [m/s]
     double rampTime = 0;  // [s]
+    double speedup = 1;   // velocity factor after speedupStart
+    double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
     double displacement(double t) const;
 };
 

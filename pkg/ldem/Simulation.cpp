@@ -6,8 +6,17 @@
 #include "ldem/Integrator.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/Separation.hpp"
 
 namespace ldem {
+
+StopAt parseStopAt(const std::string& name) {
+    if (name == "separation") return StopAt::Separation;
+    if (name == "load_loss") return StopAt::LoadLoss;
+    throw std::invalid_argument("unknown stop event '" + name + "' (expected separation or load_loss)");
+}
+
+std::string stopAtName(StopAt s) { return s == StopAt::Separation ? "separation" : "load_loss"; }
 
 void RunParams::validate() const {
     auto fail = [](const std::string& s) { throw std::invalid_argument(s); };
@@ -17,11 +26,12 @@ void RunParams::validate() const {
     if (!(finalStrain > 0)) fail("final strain must be positive (got " + std::to_string(finalStrain) + ")");
     if (!(stopFraction >= 0 && stopFraction < 1)) fail("stop fraction must be in [0, 1)");
     if (!(splitWindow >= 0) || !std::isfinite(splitWindow)) fail("split window must be >= 0 s");
+    if (!(energyTolerance > 0)) fail("energy tolerance must be positive");
     if (recordEvery < 0) fail("record interval must be >= 0 steps");
     if (threads < 0) fail("threads must be >= 0");
 }
 
-bool SplitDetector::update(double time, double stress, double peakStress, std::int64_t broken) {
+bool LoadLossDetector::update(double time, double stress, double peakStress, std::int64_t broken) {
     recent_.emplace_back(time, stress);
     while (recent_.front().first < time - window_) recent_.pop_front();
     double sum = 0;
@@ -51,13 +61,15 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
     Df_ = massDampingCoefficient(run_.zeta, freq_.omega1);
     const double pi = 3.14159265358979323846;
     const double period1 = 2 * pi / freq_.omega1;
-    drive_ = {load_.strainRate * con_.height, load_.rampTime > 0 ? load_.rampTime : 2 * period1};
+    drive_.v0 = load_.strainRate * con_.height;
+    drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
+    drive_.speedup = load_.lossSpeedup;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
-    } else {  // about 2000 records up to the final strain
-        const double tFinal = run_.finalStrain * con_.height / (drive_.v0 * con_.meanTopWeight) + 0.5 * drive_.rampTime;
-        recordEvery_ = std::max(1, int(tFinal / dt_ / 2000));
+    } else {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
+        const double rowTime = mat_.epsP / 50 * con_.height / (drive_.v0 * con_.meanTopWeight);
+        recordEvery_ = std::max(1, int(rowTime / dt_));
     }
 
     // Random G_f -> limit strain of each bar (the field itself is not kept).
@@ -85,19 +97,35 @@ std::vector<double> Simulation::fractureEnergyField() const {
     return ldem::fractureEnergyField(lat_, mat_, run_.seed);
 }
 
+std::vector<double> Simulation::ruptureEnergies() const {
+    std::vector<double> e(lat_.numBars());
+    forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
+        const BarFamily& fam = lat_.families[row.family];
+        e[b] = dissipatedEnergy(bars_.epsR[b], fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b], fam.L);
+    });
+    return e;
+}
+
 double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
 
 void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }
+
+double Simulation::bottomStress() const {
+    double bottom = 0;
+    for (auto n : con_.bottomNodes) bottom += f_.z[n];
+    return bottom / con_.faceArea;
+}
+
+bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), con_.topNodes, con_.bottomNodes); }
 
 CurvePoint Simulation::measure() const {
     CurvePoint p;
     p.step = step_;
     p.time = time_;
     p.meanStrain = meanStrainAt(time_);
-    double bottom = 0, top = 0;
-    for (auto n : con_.bottomNodes) bottom += f_.z[n];
+    double top = 0;
     for (auto n : con_.topNodes) top -= f_.z[n];
-    p.stressBottom = bottom / con_.faceArea;
+    p.stressBottom = bottomStress();
     p.stressTop = top / con_.faceArea;
     const BarEnergies e = barEnergies(lat_, u_, bars_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
@@ -143,14 +171,29 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     setThreads(run_.threads);
     RunSummary s;
     double maxWork = 0, maxResidual = 0;
-    SplitDetector split(splitWindow_, run_.stopFraction);
+    LoadLossDetector loadLoss(splitWindow_, run_.stopFraction);
+    // Separation is checked every kSeparationCheck steps at the most, once the
+    // stress has fallen below half the peak: a check costs about as much as one
+    // or two steps (union-find over the bars), so this keeps it near 1 %.
+    constexpr std::int64_t kSeparationCheck = 100;
+    std::int64_t lastCheck = -kSeparationCheck;
+    // The peak, at every step: the stress of state n is known once its forces are.
+    auto trackPeak = [&](double tn) {
+        const double stress = bottomStress();
+        if (stress <= s.peakStress) return;
+        s.peakStress = stress;
+        s.strainAtPeak = meanStrainAt(tn);
+        s.edgeStrainAtPeak = drive_.displacement(tn) / con_.height;
+    };
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
+            trackPeak(time_ - dt_);
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.
         computeForces();
+        trackPeak(time_);
         const CurvePoint p = measure();
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the
@@ -165,17 +208,26 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         }
         maxWork = std::max(maxWork, p.externalWork);
         maxResidual = std::max(maxResidual, std::abs(p.balanceResidual()));
-        if (p.stressBottom > s.peakStress) s.peakStress = p.stressBottom, s.strainAtPeak = p.meanStrain;
         s.fractureEnergy = p.fracture;
         s.steps = step_;
         const bool keepGoing = !observer || observer(p);
-        if (split.update(p.time, p.stressBottom, s.peakStress, p.broken)) s.stopReason = "split";
+        if (!s.loadLoss.reached() && loadLoss.update(p.time, p.stressBottom, s.peakStress, p.broken)) {
+            s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
+            drive_.speedupStart = time_;
+        }
+        if (p.broken > 0 && p.stressBottom < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheck) {
+            lastCheck = step_;
+            if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
+        }
+        if (s.separation.reached()) s.stopReason = "separated";
+        else if (run_.stopAt == StopAt::LoadLoss && s.loadLoss.reached()) s.stopReason = "load_lost";
         else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
         else if (!keepGoing) s.stopReason = "stopped";
         if (!s.stopReason.empty()) break;
         advance();
     }
     s.energyBalanceError = maxWork > 0 ? maxResidual / maxWork : 0.0;
+    s.energyError = s.energyBalanceError > run_.energyTolerance;
     return s;
 }
 

@@ -20,15 +20,21 @@
 
 namespace ldem {
 
+enum class StopAt { Separation, LoadLoss };
+StopAt parseStopAt(const std::string& name);  // "separation" | "load_loss"
+std::string stopAtName(StopAt s);
+
 struct RunParams {
     std::uint64_t seed = 1;      // random specimen
     double zeta = 0.02;          // damping ratio on the fundamental mode [-]
     double dt = 0.0;             // time step [s]; 0 = safety x stability limit
-    double dtSafety = 0.9;       // fraction of the stability limit 2/omega_max allowed
-    double finalStrain = 2e-3;   // stop at this mean strain [-]
-    double stopFraction = 0.01;  // split when stress < this fraction of the peak, after the peak,
+    double dtSafety = 0.4;       // fraction of the linear stability limit 2/omega_max (see Simulation.cpp)
+    StopAt stopAt = StopAt::Separation;  // the event that ends the run
+    double finalStrain = 0.5;    // stop at this mean strain if the event has not come [-]
+    double stopFraction = 0.01;  // load lost when stress < this fraction of the peak, after the peak,
     double splitWindow = 0.0;    // ... on average over this time [s]; 0 = two fundamental periods
-    int recordEvery = 0;         // steps between records; 0 = about 2000 records to the final strain
+    double energyTolerance = 0.01;  // a run whose energy balance error exceeds this is flagged
+    int recordEvery = 0;         // steps between records; 0 = one per eps_p/50 of mean strain at the initial rate
     int threads = 0;             // OpenMP threads; 0 = default
     void validate() const;
 };
@@ -44,25 +50,34 @@ struct CurvePoint {
     double balanceResidual() const { return externalWork - (kinetic + elastic + fracture + damping); }
 };
 
-struct RunSummary {
-    double peakStress = 0;       // [Pa]
-    double strainAtPeak = 0;
-    double fractureEnergy = 0;   // U_num: fracture energy dissipated at the end [J]
-    double energyBalanceError = 0;  // max |residual| / max external work over the records
-    std::int64_t steps = 0;
-    std::string stopReason;      // "split" or "final_strain"
+// An event of the run: when it came and the fracture energy dissipated by then.
+struct RunEvent {
+    std::int64_t step = -1;  // -1: not reached
+    double time = 0, meanStrain = 0, fracture = 0;  // [s], [-], [J]
+    bool reached() const { return step >= 0; }
 };
 
-// The split test, fed one record at a time (Simulation::run, and ldem.yade for
-// the same specimen in YADE): bars have broken and the lower face no longer
-// carries load. When the last ligaments snap the reaction rings around zero for
-// a while, and a single record below the threshold would stop a run while
-// ligaments still hold (and still dissipate), so the stress averaged over the
-// last `window` seconds (two fundamental periods by default) must be below
-// fraction x peak.
-class SplitDetector {
+struct RunSummary {
+    double peakStress = 0;        // [Pa], tracked at every step
+    double strainAtPeak = 0;      // mean strain at the peak
+    double edgeStrainAtPeak = 0;  // strain at the most-pulled edge at the peak (= mean for uniform)
+    RunEvent loadLoss;            // stress averaged over the window below stopFraction x peak
+    RunEvent separation;          // no chain of intact bars joins the two faces: U_num = separation.fracture
+    double fractureEnergy = 0;    // fracture energy dissipated at the end [J]
+    double energyBalanceError = 0;  // max |residual| / max external work over the records
+    bool energyError = false;     // energyBalanceError > energyTolerance
+    std::int64_t steps = 0;
+    std::string stopReason;       // "separated", "load_lost", "final_strain" or "stopped"
+};
+
+// The load-loss test, fed one record at a time (Simulation::run, and ldem.yade
+// for the same specimen in YADE): bars have broken and the lower face no longer
+// carries load. The reaction rings around zero for a while after the last
+// large ruptures, so the stress averaged over the last `window` seconds (two
+// fundamental periods by default) must be below fraction x peak.
+class LoadLossDetector {
 public:
-    SplitDetector(double window, double fraction) : window_(window), fraction_(fraction) {}
+    LoadLossDetector(double window, double fraction) : window_(window), fraction_(fraction) {}
     bool update(double time, double stress, double peakStress, std::int64_t broken);
 
 private:
@@ -82,7 +97,8 @@ public:
                const RunParams& run);
 
     // The time-step loop: records every recordEvery steps, calls observer (which may
-    // return false to stop), stops on split or final strain.
+    // return false to stop), speeds the drive up once the load is lost, stops
+    // at separation (or load loss, see RunParams::stopAt) or the final strain.
     RunSummary run(const std::function<bool(const CurvePoint&)>& observer = {});
 
     // One step, forces at x(n) then x(n+1), in one pass over the lattice.
@@ -102,6 +118,9 @@ public:
     const BarState& bars() const { return bars_; }
     const Field3& displacements() const { return u_; }
     std::vector<double> fractureEnergyField() const;  // G_f of every bar (recomputed from the seed)
+    // Energy each bar dissipates when it breaks: A_f G_f, or 1/2 L EA eps_p^2 for a
+    // bar clamped to perfectly brittle (the capacities of the cheapest cut).
+    std::vector<double> ruptureEnergies() const;
     const Material& material() const { return mat_; }
     const LoadingParams& loading() const { return load_; }
     const RunParams& runParams() const { return run_; }
@@ -109,6 +128,8 @@ public:
     double dt() const { return dt_; }
     double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
     double dampingCoefficient() const { return Df_; }
+    double bottomStress() const;  // sum of the vertical reactions of the lower nodes / face area, state n [Pa]
+    bool facesJoined() const;     // some chain of intact bars joins the upper and lower faces
     double rampTime() const { return drive_.rampTime; }
     double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }

@@ -50,14 +50,30 @@ def cmd_cube(args) -> int:
     progress = False if args.no_progress else None
     result = test.run(out=args.out, progress=progress, plots=not args.no_plots)
     s = result.summary
-    print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}")
-    print(f"U_num/U_min {s['U_ratio']:.3f} ({s['fracture_energy_J']:.4g} J / {s['min_fracture_energy_J']:.4g} J), "
-          f"energy balance error {s['energy_balance_error']:.2e}, stop: {s['stop_reason']}, "
-          f"{s['steps']} steps of {s['dt_s']:.3e} s, {s['wall_s']:.1f} s wall")
+    print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
+          + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if test.load == "triangular" else ""))
+    loss, sep = s["load_loss"], s["separation"]
+    if loss:
+        print(f"load lost at mean strain {loss['mean_strain']:.4e}: fracture energy {loss['fracture_energy_J']:.4g} J "
+              f"({loss['fracture_energy_J'] / s['min_fracture_energy_J']:.3f} U_min)")
+    if sep:
+        print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
+              f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J, "
+              f"cheapest cut {s['U_mincut_J'] / s['min_fracture_energy_J']:.3f} U_min)")
+    else:
+        print(f"NOT separated (stop: {s['stop_reason']}): fracture energy at the end {s['fracture_energy_J']:.4g} J "
+              f"is not U_num")
+    print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
+          f"{s['wall_s']:.1f} s wall")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
     print(f"wrote {args.out}/: curve.csv summary.json" + ("" if args.no_plots else
                                                            " curve.png energies.png cracks.png bars.vtu"))
+    if s["energy_error"]:
+        print(f"ldem cube: failed: energy balance error {s['energy_balance_error']:.2e} is above the tolerance "
+              f"{test.energy_tolerance:g}: energy was created or lost by the integration; the results are "
+              f"not trustworthy (summary.json says energy_error)", file=sys.stderr)
+        return EXIT_FAILED
     return 0
 
 
@@ -89,7 +105,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub.required = True
 
     c = sub.add_parser("cube", help="one cube tension test (peak stress, curve, crack picture)",
-                       description="Pulls a concrete cube in tension until it splits; writes curve.csv, "
+                       description="Pulls a concrete cube in tension until it separates in two pieces; writes curve.csv, "
                                    "summary.json, curve.png, energies.png, cracks.png and bars.vtu into --out.",
                        formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     add_cube_options(c)

@@ -22,6 +22,7 @@ from typing import Optional
 import numpy as np
 
 from . import _core
+from .mincut import cheapest_cut
 
 _MAT, _LOAD, _RUN = _core.Material(), _core.LoadingParams(), _core.RunParams()
 
@@ -49,7 +50,11 @@ class CubeTest:
     c_a: float = _param(_MAT.c_a, "", "fracture-area coefficient c_a")
     zeta: float = _param(_RUN.zeta, "", "damping ratio on the fundamental mode (D_f = 2 zeta omega_1)")
     strain_rate: float = _param(_LOAD.strain_rate, "1/s", "vertical strain rate at the most-pulled edge")
-    final_strain: float = _param(_RUN.final_strain, "", "stop at this mean strain if not split before")
+    stop_at: str = _param("separation", "", "the event that ends the run: separation (no chain of intact bars "
+                          "joins the faces) or load_loss", choices=("separation", "load_loss"))
+    final_strain: float = _param(_RUN.final_strain, "", "stop at this mean strain if the event has not come")
+    loss_speedup: float = _param(_LOAD.loss_speedup, "", "drive velocity factor once the load is lost (reaches "
+                                 "separation in fewer steps)")
     ramp_time: float = _param(_LOAD.ramp_time, "s", "smooth start of the loading (0: two fundamental periods)")
     top_lateral: str = _param("free", "", "lateral DOFs of the upper nodes: free or fixed",
                               choices=("free", "fixed"))
@@ -57,11 +62,14 @@ class CubeTest:
                                  choices=("fixed", "free"))
     dt: float = _param(_RUN.dt, "s", "time step (0: safety x stability limit)")
     dt_safety: float = _param(_RUN.dt_safety, "", "fraction of the stability limit 2/omega_max allowed")
-    stop_fraction: float = _param(_RUN.stop_fraction, "", "split when the stress, averaged over the split "
-                                  "window, is below this fraction of the peak")
-    split_window: float = _param(_RUN.split_window, "s", "averaging time of the split test (0: two fundamental "
+    stop_fraction: float = _param(_RUN.stop_fraction, "", "the load is lost when the stress, averaged over the "
+                                  "split window, is below this fraction of the peak")
+    split_window: float = _param(_RUN.split_window, "s", "averaging time of the load-loss test (0: two fundamental "
                                  "periods)")
-    record_every: int = _param(_RUN.record_every, "steps", "steps between curve rows (0: about 2000 rows)")
+    energy_tolerance: float = _param(_RUN.energy_tolerance, "", "a run whose energy balance error exceeds this "
+                                     "is flagged energy_error (and ldem exits 1)")
+    record_every: int = _param(_RUN.record_every, "steps", "steps between curve rows (0: one per eps_p/50 of mean "
+                               "strain at the initial rate)")
     threads: int = _param(_RUN.threads, "", "OpenMP threads (0: all cores)")
 
     # -- checks -------------------------------------------------------------
@@ -78,6 +86,8 @@ class CubeTest:
 
     def core_params(self):
         """The three C++ parameter structs; raises ValueError on bad input."""
+        if self.stop_at not in ("separation", "load_loss"):
+            raise ValueError(f"unknown stop event '{self.stop_at}' (expected separation or load_loss)")
         if self.load not in ("uniform", "triangular"):
             raise ValueError(f"unknown load '{self.load}' (expected uniform or triangular)")
         for name in ("top_lateral", "bottom_lateral"):
@@ -93,10 +103,12 @@ class CubeTest:
         lp.shape, lp.strain_rate, lp.ramp_time = self.load, self.strain_rate, self.ramp_time
         lp.top_lateral_free = self.top_lateral == "free"
         lp.bottom_lateral_free = self.bottom_lateral == "free"
+        lp.loss_speedup = self.loss_speedup
         rp = _core.RunParams()
         rp.seed, rp.zeta, rp.dt, rp.dt_safety = self.seed, self.zeta, self.dt, self.dt_safety
         rp.final_strain, rp.stop_fraction, rp.split_window = self.final_strain, self.stop_fraction, self.split_window
         rp.record_every, rp.threads = self.record_every, self.threads
+        rp.stop_at, rp.energy_tolerance = self.stop_at, self.energy_tolerance
         return m, lp, rp
 
     def simulation(self) -> "_core.Simulation":
@@ -194,17 +206,33 @@ def _curve_arrays(points) -> dict:
     return {c: curve[c] for c in CURVE_COLUMNS}
 
 
+def _event(e) -> dict:
+    """An event of the run (RunEvent) for summary.json; None if it never came."""
+    if not e.reached:
+        return None
+    return {"step": e.step, "time_s": e.time, "mean_strain": e.mean_strain, "fracture_energy_J": e.fracture}
+
+
 def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
     u_min = sim.min_fracture_energy
     s = {"status": status}
     if summary is not None:
+        sep = summary.separation
+        u_num = sep.fracture if sep.reached else None
         s.update({
             "peak_stress_MPa": summary.peak_stress * 1e-6,
             "strain_at_peak": summary.strain_at_peak,
+            "edge_strain_at_peak": summary.edge_strain_at_peak,
+            "separated": sep.reached,
+            "U_num_J": u_num,
+            "U_ratio": None if u_num is None else u_num / u_min,
+            "load_loss": _event(summary.load_loss),
+            "separation": _event(sep),
             "fracture_energy_J": summary.fracture_energy,
             "min_fracture_energy_J": u_min,
-            "U_ratio": summary.fracture_energy / u_min,
+            "U_mincut_J": cheapest_cut(sim),
             "energy_balance_error": summary.energy_balance_error,
+            "energy_error": summary.energy_error,
             "stop_reason": summary.stop_reason,
         })
     elif len(curve["stress_MPa"]):  # failed run: what the rows recorded so far say

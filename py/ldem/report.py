@@ -118,6 +118,11 @@ def damping_figures(out, tests) -> List[str]:
     return names
 
 
+def _num(v, fmt) -> str:
+    """A table cell: '-' for a value that does not exist (e.g. U_num of a run that did not separate)."""
+    return "-" if v in ("", None) else format(float(v), fmt)
+
+
 def _md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]
@@ -169,9 +174,12 @@ def write_report(out, tests, table, fits, figs) -> None:
               ["damping", f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"],
               ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
                             "same L0)"],
-              ["stop", "bars broke and the stress averaged over "
-                       + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
-                       + f" < {p['stop_fraction']:g} x peak, or mean strain {p['final_strain']:g}"],
+              ["load loss", "bars broke and the stress averaged over "
+                            + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
+                            + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
+                              f"{p.get('loss_speedup', 1):g} times"],
+              ["stop", f"{p.get('stop_at', 'load_loss')} (separation: no chain of intact bars joins the faces), "
+                       f"or mean strain {p['final_strain']:g}"],
               ["threads per case", str(first["threads"])],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]
@@ -203,11 +211,17 @@ def write_report(out, tests, table, fits, figs) -> None:
                    _md_table(["size [m]", "peak of the mean curve [MPa]", "against study", "its strain",
                               "against study"], rows), ""]
     md += ["## Fracture energy", "",
-           "U_num: fracture energy dissipated when the specimen no longer carries load; U_min = E[G_f] x face area; "
-           "corrected c_a = 0.1385 x E[U_num/U_min] (the study's proposal for coarser meshes).", ""]
-    rows = [[r["load"], f"{r['size_m']:g}", f"{r['U_num_J_mean']:.4g}", f"{r['U_min_J']:.4g}",
-             f"{r['U_ratio_mean']:.3f}", f"{r['U_ratio_cv']:.3f}", f"{r['ca_corrected']:.4f}"] for r in table]
-    md += [_md_table(["load", "size [m]", "U_num [J]", "U_min [J]", "U_num/U_min", "CV", "corrected c_a"], rows), ""]
+           "U_num: fracture energy dissipated up to separation (no chain of intact bars joins the two faces; "
+           "the mean is over the separated specimens, counted in 'separated'); beside it the energy when the "
+           "load was lost, and the cheapest cut (the least energy of any set of bars whose rupture separates the "
+           "faces: a lower bound of U_num). U_min = E[G_f] x face area; corrected c_a = 0.1385 x E[U_num/U_min] "
+           "(the study's proposal for coarser meshes).", ""]
+    rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}", _num(r["U_num_J_mean"], ".4g"),
+             f"{r['U_min_J']:.4g}", _num(r["U_ratio_mean"], ".3f"), _num(r["U_ratio_cv"], ".3f"),
+             _num(r["U_loss_ratio_mean"], ".3f"), f"{r['U_mincut_ratio_mean']:.3f}", _num(r["ca_corrected"], ".4f"),
+             str(r["energy_errors"])] for r in table]
+    md += [_md_table(["load", "size [m]", "separated", "U_num [J]", "U_min [J]", "U_num/U_min", "CV",
+                      "at load loss", "cheapest cut", "corrected c_a", "energy errors"], rows), ""]
     if fits:
         md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]
         md += [_md_table(["load", "d", "energy per unit area ~ b^(d-2)", "rms log residual"],
@@ -219,7 +233,7 @@ def write_report(out, tests, table, fits, figs) -> None:
         md += ["## Damping", "", "`ldem study damping`: the same specimen at several damping ratios.", "",
                _md_table(["load", "size [m]", "zeta", "peak [MPa]", "strain at peak", "U_num/U_min"],
                          [[r["load"], f"{r['size_m']:g}", f"{r['zeta']:g}", f"{r['peak_stress_MPa']:.3f}",
-                           f"{r['strain_at_peak']:.3e}", f"{r['U_ratio']:.3f}"] for r in rows]), ""]
+                           f"{r['strain_at_peak']:.3e}", _num(r["U_ratio"], ".3f")] for r in rows]), ""]
         figs += [(f, f"damping, {f[8:-4]}") for f in sorted(os.listdir(out)) if f.startswith("damping_")
                  and f.endswith(".png")]
     md += ["## Figures", ""] + [f"![{title}]({name})\n" for name, title in figs]

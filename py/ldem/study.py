@@ -112,7 +112,8 @@ def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Opt
     def finished(i, summary):
         bar.step()
         log(f"  {case_name(tests[i])}: peak {summary['peak_stress_MPa']:.4f} MPa at {summary['strain_at_peak']:.4e}, "
-            f"U_num/U_min {summary['U_ratio']:.3f}, {summary['wall_s']:.1f} s")
+            + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("separated") else "NOT separated")
+            + (", ENERGY ERROR" if summary.get("energy_error") else "") + f", {summary['wall_s']:.1f} s")
 
     try:
         if scheduler:
@@ -219,20 +220,31 @@ def damping_tests(size: float, zetas: Iterable[float], loads: Iterable[str], see
 
 
 # -- aggregation ---------------------------------------------------------------
-CASE_COLUMNS = ("load", "size_m", "seed", "zeta", "strain_rate", "peak_stress_MPa", "strain_at_peak", "U_num_J",
-                "U_min_J", "U_ratio", "energy_balance_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
+CASE_COLUMNS = ("load", "size_m", "seed", "zeta", "strain_rate", "peak_stress_MPa", "strain_at_peak",
+                "edge_strain_at_peak", "separated", "separation_strain", "U_num_J", "U_min_J", "U_ratio",
+                "load_loss_strain", "U_loss_J", "U_loss_ratio", "U_mincut_J", "U_mincut_ratio",
+                "energy_balance_error", "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
                 "wall_s", "stop_reason")
 
 
 def case_row(s: dict) -> dict:
+    """One case's row: U_num is the energy at separation, empty if the run ended
+    without separating (its energy at the end is never presented as U_num)."""
     p = s["parameters"]
+    u_min = s["min_fracture_energy_J"]
+    loss, sep = s.get("load_loss") or {}, s.get("separation") or {}
     return {"load": p["load"], "size_m": p["size"], "seed": p["seed"], "zeta": p["zeta"],
             "strain_rate": p["strain_rate"], "peak_stress_MPa": s["peak_stress_MPa"],
-            "strain_at_peak": s["strain_at_peak"], "U_num_J": s["fracture_energy_J"],
-            "U_min_J": s["min_fracture_energy_J"], "U_ratio": s["U_ratio"],
-            "energy_balance_error": s["energy_balance_error"], "clamped_bars": s["clamped_bars"],
-            "n_bars": s["n_bars"], "steps": s["steps"], "dt_s": s["dt_s"], "threads": s["threads"],
-            "wall_s": s["wall_s"], "stop_reason": s["stop_reason"]}
+            "strain_at_peak": s["strain_at_peak"], "edge_strain_at_peak": s["edge_strain_at_peak"],
+            "separated": bool(s["separated"]), "separation_strain": sep.get("mean_strain", ""),
+            "U_num_J": s["U_num_J"] if s["separated"] else "", "U_min_J": u_min,
+            "U_ratio": s["U_ratio"] if s["separated"] else "",
+            "load_loss_strain": loss.get("mean_strain", ""), "U_loss_J": loss.get("fracture_energy_J", ""),
+            "U_loss_ratio": loss["fracture_energy_J"] / u_min if loss else "",
+            "U_mincut_J": s["U_mincut_J"], "U_mincut_ratio": s["U_mincut_J"] / u_min,
+            "energy_balance_error": s["energy_balance_error"], "energy_error": bool(s["energy_error"]),
+            "clamped_bars": s["clamped_bars"], "n_bars": s["n_bars"], "steps": s["steps"], "dt_s": s["dt_s"],
+            "threads": s["threads"], "wall_s": s["wall_s"], "stop_reason": s["stop_reason"]}
 
 
 def mean_cv(values) -> tuple:
@@ -243,15 +255,23 @@ def mean_cv(values) -> tuple:
     return m, cv
 
 
-SUMMARY_COLUMNS = ("load", "size_m", "seeds", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean",
-                   "strain_at_peak_cv", "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv", "ca_corrected",
-                   "ref_peak_stress_MPa", "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak",
-                   "wall_s_mean")
+SUMMARY_COLUMNS = ("load", "size_m", "seeds", "separated", "energy_errors", "peak_stress_MPa_mean",
+                   "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv", "edge_strain_at_peak_mean",
+                   "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv", "U_loss_ratio_mean", "U_loss_ratio_cv",
+                   "U_mincut_ratio_mean", "U_mincut_ratio_cv", "ca_corrected", "ref_peak_stress_MPa",
+                   "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak", "wall_s_mean")
+
+
+def _mean_cv_or_empty(values) -> tuple:
+    values = [v for v in values if v != ""]
+    return mean_cv(values) if values else ("", "")
 
 
 def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, List[dict]]] = None) -> List[dict]:
     """One row per (load, size): means and CVs over the seeds, the corrected
     c_a = c_a x E[U_num/U_min], and Table 3's values where the study gives them.
+    U_num and its ratio are averaged over the separated specimens only (the
+    column `separated` counts them); `energy_errors` counts the flagged runs.
     With the specimens' curves ((load, size) -> curves), also the peak of their
     mean curve: the mean of the peaks is not the peak of the mean curve, and
     the study does not say which of the two its Table 3 gives."""
@@ -261,12 +281,21 @@ def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, Lis
             g = [r for r in rows if r["load"] == load and r["size_m"] == size]
             peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in g])
             strain, strain_cv = mean_cv([r["strain_at_peak"] for r in g])
-            ratio, ratio_cv = mean_cv([r["U_ratio"] for r in g])
+            ratio, ratio_cv = _mean_cv_or_empty([r["U_ratio"] for r in g])
+            loss, loss_cv = _mean_cv_or_empty([r["U_loss_ratio"] for r in g])
+            cut, cut_cv = mean_cv([r["U_mincut_ratio"] for r in g])
+            u_num = [r["U_num_J"] for r in g if r["U_num_J"] != ""]
             ref = REFERENCE_UNIFORM.get(round(size, 6)) if load == "uniform" else None
-            out.append({"load": load, "size_m": size, "seeds": len(g), "peak_stress_MPa_mean": peak,
-                        "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain, "strain_at_peak_cv": strain_cv,
-                        "U_num_J_mean": float(np.mean([r["U_num_J"] for r in g])), "U_min_J": g[0]["U_min_J"],
-                        "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv, "ca_corrected": c_a * ratio,
+            out.append({"load": load, "size_m": size, "seeds": len(g),
+                        "separated": sum(1 for r in g if r["separated"] in (True, "True")),
+                        "energy_errors": sum(1 for r in g if r["energy_error"] in (True, "True")),
+                        "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain,
+                        "strain_at_peak_cv": strain_cv,
+                        "edge_strain_at_peak_mean": float(np.mean([r["edge_strain_at_peak"] for r in g])),
+                        "U_num_J_mean": float(np.mean(u_num)) if u_num else "", "U_min_J": g[0]["U_min_J"],
+                        "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv, "U_loss_ratio_mean": loss,
+                        "U_loss_ratio_cv": loss_cv, "U_mincut_ratio_mean": cut, "U_mincut_ratio_cv": cut_cv,
+                        "ca_corrected": c_a * ratio if ratio != "" else "",
                         "ref_peak_stress_MPa": ref[0] if ref else "", "ref_strain_at_peak": ref[1] if ref else "",
                         "mean_curve_peak_MPa": "", "mean_curve_strain_at_peak": "",
                         "wall_s_mean": float(np.mean([r["wall_s"] for r in g]))})
@@ -385,6 +414,7 @@ def cmd_size_effect(args) -> int:
     fits = {}
     for load in dict.fromkeys(r["load"] for r in table):
         g = [r for r in table if r["load"] == load]
+        g = [r for r in g if r["U_num_J_mean"] != ""]  # sizes with separated specimens
         if len(g) >= 2 and any(math.isclose(r["size_m"], B0) for r in g):
             fits[load] = fit_fractal([r["size_m"] for r in g], [r["U_num_J_mean"] for r in g])
     with open(os.path.join(args.out, "fractal.json"), "w") as f:
@@ -396,7 +426,11 @@ def cmd_size_effect(args) -> int:
     for r in table:
         print(f"  {r['load']:10s} {r['size_m']:.2f} m: peak {r['peak_stress_MPa_mean']:.3f} MPa "
               f"(cv {r['peak_stress_MPa_cv']:.3f}) at {r['strain_at_peak_mean']:.3e}, "
-              f"U_num/U_min {r['U_ratio_mean']:.3f}")
+              + (f"U_num/U_min {r['U_ratio_mean']:.3f}" if r["separated"] else "U_num -")
+              + f" ({r['separated']} of {r['seeds']} separated), at load loss "
+              + (f"{r['U_loss_ratio_mean']:.3f}" if r["U_loss_ratio_mean"] != "" else "-")
+              + f", cheapest cut {r['U_mincut_ratio_mean']:.3f}"
+              + (f", {r['energy_errors']} ENERGY ERRORS" if r["energy_errors"] else ""))
     for load, fit in fits.items():
         print(f"  fractal fit ({load}): d = {fit['d']:.3f} (energy per unit area: b^{fit['d_specific']:.3f})")
     return 0
@@ -421,7 +455,8 @@ def cmd_damping(args) -> int:
         report.damping_figures(args.out, tests)
     for r in rows:
         print(f"  {r['load']:10s} zeta {r['zeta']:g}: peak {r['peak_stress_MPa']:.4f} MPa at "
-              f"{r['strain_at_peak']:.4e}, U_num/U_min {r['U_ratio']:.3f}")
+              f"{r['strain_at_peak']:.4e}, U_num/U_min "
+              + (f"{r['U_ratio']:.3f}" if r["separated"] else "(not separated)"))
     return 0
 
 

@@ -360,7 +360,7 @@ class CubeSpecimen:
         self.peak_stress, self.strain_at_peak = 0.0, 0.0
         self.stop_reason = ""
         self.final_strain, self.callback = math.inf, None
-        self.split = _core.SplitDetector(sim.split_window, 0.01)
+        self.split = _core.LoadLossDetector(sim.split_window, 0.01)
 
     # -- engines -------------------------------------------------------------
     def _before_forces(self):
@@ -388,7 +388,7 @@ class CubeSpecimen:
             self.peak_stress, self.strain_at_peak = stress, strain
         keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
         if self.split.update(O.time, stress, self.peak_stress, broken):
-            self.stop_reason = "split"
+            self.stop_reason = "load_lost"
         elif strain >= self.final_strain:
             self.stop_reason = "final_strain"
         elif not keep:
@@ -398,14 +398,14 @@ class CubeSpecimen:
 
     # -- run -----------------------------------------------------------------
     def run(self, final_strain=2e-3, stop_fraction=0.01, max_steps=None, callback=None):
-        """Runs until ldem's split test (_core.SplitDetector: stress averaged over
+        """Runs until ldem's load-loss test (_core.LoadLossDetector: stress averaged over
         the split window < stop_fraction x peak, after bars broke), the mean
         strain reaches final_strain, or callback(row) returns
         False. Returns a dict with peak_stress [Pa], strain_at_peak, steps,
         stop_reason, curve (numpy array of step, time, mean_strain,
         stress_bottom, stress_top, damaged, broken), guard_early, lost_bars."""
         self.final_strain, self.callback = final_strain, callback
-        self.split = _core.SplitDetector(self.sim.split_window, stop_fraction)
+        self.split = _core.LoadLossDetector(self.sim.split_window, stop_fraction)
         self.stop_reason = ""
         if max_steps is None:  # time to the final strain + ramp, with margin
             v0 = self.sim.loading.strain_rate * self.height

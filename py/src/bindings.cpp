@@ -15,6 +15,7 @@
 #include "ldem/Modal.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/Separation.hpp"
 #include "ldem/Simulation.hpp"
 
 namespace py = pybind11;
@@ -53,7 +54,8 @@ PYBIND11_MODULE(_core, m) {
         .def_readwrite("strain_rate", &LoadingParams::strainRate)
         .def_readwrite("ramp_time", &LoadingParams::rampTime)
         .def_readwrite("top_lateral_free", &LoadingParams::topLateralFree)
-        .def_readwrite("bottom_lateral_free", &LoadingParams::bottomLateralFree);
+        .def_readwrite("bottom_lateral_free", &LoadingParams::bottomLateralFree)
+        .def_readwrite("loss_speedup", &LoadingParams::lossSpeedup);
 
     py::class_<RunParams>(m, "RunParams")
         .def(py::init<>())
@@ -61,6 +63,10 @@ PYBIND11_MODULE(_core, m) {
         .def_readwrite("zeta", &RunParams::zeta)
         .def_readwrite("dt", &RunParams::dt)
         .def_readwrite("dt_safety", &RunParams::dtSafety)
+        .def_property(
+            "stop_at", [](const RunParams& p) { return stopAtName(p.stopAt); },
+            [](RunParams& p, const std::string& s) { p.stopAt = parseStopAt(s); })
+        .def_readwrite("energy_tolerance", &RunParams::energyTolerance)
         .def_readwrite("final_strain", &RunParams::finalStrain)
         .def_readwrite("stop_fraction", &RunParams::stopFraction)
         .def_readwrite("split_window", &RunParams::splitWindow)
@@ -81,19 +87,33 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("damaged", &CurvePoint::damaged)
         .def_readonly("broken", &CurvePoint::broken);
 
+    py::class_<RunEvent>(m, "RunEvent", "an event of the run: step (-1: not reached), time, mean strain, fracture energy")
+        .def_readonly("step", &RunEvent::step)
+        .def_readonly("time", &RunEvent::time)
+        .def_readonly("mean_strain", &RunEvent::meanStrain)
+        .def_readonly("fracture", &RunEvent::fracture)
+        .def_property_readonly("reached", &RunEvent::reached);
     py::class_<RunSummary>(m, "RunSummary")
         .def_readonly("peak_stress", &RunSummary::peakStress)
         .def_readonly("strain_at_peak", &RunSummary::strainAtPeak)
+        .def_readonly("edge_strain_at_peak", &RunSummary::edgeStrainAtPeak)
+        .def_readonly("load_loss", &RunSummary::loadLoss)
+        .def_readonly("separation", &RunSummary::separation)
         .def_readonly("fracture_energy", &RunSummary::fractureEnergy)
         .def_readonly("energy_balance_error", &RunSummary::energyBalanceError)
+        .def_readonly("energy_error", &RunSummary::energyError)
         .def_readonly("steps", &RunSummary::steps)
         .def_readonly("stop_reason", &RunSummary::stopReason);
-
-    py::class_<SplitDetector>(m, "SplitDetector", "the split test of Simulation.run, one record at a time")
+    py::class_<LoadLossDetector>(m, "LoadLossDetector", "the load-loss test of Simulation.run, one record at a time")
         .def(py::init<double, double>(), py::arg("window"), py::arg("fraction"))
-        .def("update", &SplitDetector::update, py::arg("time"), py::arg("stress"), py::arg("peak_stress"),
+        .def("update", &LoadLossDetector::update, py::arg("time"), py::arg("stress"), py::arg("peak_stress"),
              py::arg("broken"));
-
+    m.def(
+        "nodes_joined",
+        [](const Lattice& lat, const std::vector<std::uint8_t>& intact, const std::vector<std::int32_t>& a,
+           const std::vector<std::int32_t>& b) { return nodesJoined(lat, intact, a, b); },
+        py::arg("lattice"), py::arg("intact"), py::arg("a"), py::arg("b"),
+        "True if a chain of intact bars (intact[bar] != 0) joins a node of a to a node of b: Simulation.run's separation test");
     py::class_<CurveCsvWriter>(m, "CurveCsvWriter")
         .def(py::init<const std::string&>())
         .def("write", &CurveCsvWriter::write)
@@ -178,6 +198,7 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
+        .def("faces_joined", &Simulation::facesJoined, "some chain of intact bars joins the upper and lower faces")
         .def_property_readonly("ramp_time", &Simulation::rampTime)
         .def_property_readonly("split_window", &Simulation::splitWindow)
         .def_property_readonly("loading", &Simulation::loading)
@@ -200,6 +221,8 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("bottom_nodes",
                                [](const Simulation& s) { return toNumpy(s.constraints().bottomNodes); })
         .def_property_readonly("fracture_energy_field", [](const Simulation& s) { return toNumpy(s.fractureEnergyField()); })
+        .def_property_readonly("rupture_energy", [](const Simulation& s) { return toNumpy(s.ruptureEnergies()); },
+                               "energy each bar dissipates when it breaks [J] (A_f G_f; 1/2 L EA eps_p^2 if clamped)")
         .def_property_readonly("kappa", [](const Simulation& s) { return toNumpy(s.bars().kappa); })
         .def_property_readonly("eps_r", [](const Simulation& s) { return toNumpy(s.bars().epsR); })
         .def_property_readonly("eps_p", [](const Simulation& s) { return s.bars().epsP; })

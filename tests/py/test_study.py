@@ -10,7 +10,7 @@ from conftest import FAST
 from ldem import study
 from ldem.cube import CubeTest
 
-TINY = dict(strain_rate=FAST["strain_rate"], final_strain=FAST["final_strain"], threads=1)
+TINY = dict(strain_rate=FAST["strain_rate"], final_strain=0.02, threads=1)
 
 
 def test_fractal_fit_recovers_known_exponent():
@@ -29,9 +29,16 @@ def test_fractal_fit_recovers_known_exponent():
 
 
 def test_mean_cv_and_aggregation():
-    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": 1e-4 * p, "U_num_J": u,
-             "U_min_J": 1.44, "U_ratio": u / 1.44, "wall_s": 1.0} for p, u in ((2.0, 1.0), (3.0, 2.0), (4.0, 3.0))]
-    (r,) = study.aggregate(rows, c_a=0.1385)
+    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": 1e-4 * p,
+             "edge_strain_at_peak": 1e-4 * p, "separated": True, "U_num_J": u, "U_min_J": 1.44, "U_ratio": u / 1.44,
+             "U_loss_ratio": 0.5, "U_mincut_ratio": 0.7, "energy_error": False, "wall_s": 1.0}
+            for p, u in ((2.0, 1.0), (3.0, 2.0), (4.0, 3.0))]
+    # A fourth specimen that did not separate: in the peak means, not in U_num's.
+    rows.append(dict(rows[0], peak_stress_MPa=3.0, separated=False, U_num_J="", U_ratio="", energy_error=True))
+    (r,) = study.aggregate(rows[:3], c_a=0.1385)
+    (r4,) = study.aggregate(rows, c_a=0.1385)
+    assert (r4["seeds"], r4["separated"], r4["energy_errors"]) == (4, 3, 1)
+    assert r4["U_ratio_mean"] == r["U_ratio_mean"] and r4["peak_stress_MPa_mean"] == pytest.approx(3.0)
     assert r["seeds"] == 3
     assert r["peak_stress_MPa_mean"] == pytest.approx(3.0)
     assert r["peak_stress_MPa_cv"] == pytest.approx(1.0 / 3.0)  # sample std 1 over mean 3
@@ -49,8 +56,9 @@ def test_peak_of_the_mean_curve():
     peak, strain = study.mean_curve_peak([a, b])
     assert peak == pytest.approx(1.5, rel=1e-3)
     assert strain == pytest.approx(3e-4, rel=1e-3)
-    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": e, "U_num_J": 1.0,
-             "U_min_J": 1.44, "U_ratio": 1 / 1.44, "wall_s": 1.0} for p, e in ((1.0, 1e-4), (3.0, 3e-4))]
+    rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": e, "edge_strain_at_peak": e,
+             "separated": True, "U_num_J": 1.0, "U_min_J": 1.44, "U_ratio": 1 / 1.44, "U_loss_ratio": 0.5,
+             "U_mincut_ratio": 0.6, "energy_error": False, "wall_s": 1.0} for p, e in ((1.0, 1e-4), (3.0, 3e-4))]
     (r,) = study.aggregate(rows, c_a=0.1385, curves={("uniform", 0.12): [a, b]})
     assert (r["peak_stress_MPa_mean"], r["strain_at_peak_mean"]) == (pytest.approx(2.0), pytest.approx(2e-4))
     assert (r["mean_curve_peak_MPa"], r["mean_curve_strain_at_peak"]) == (peak, strain)
@@ -90,7 +98,7 @@ def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
 def test_size_effect_command_tables_and_report(tmp_path, cli):
     out = str(tmp_path / "se")
     r = cli("study", "size-effect", "--out", out, "--sizes", "0.04,0.12", "--seeds", "2", "--jobs", "2",
-            "--strain-rate", "0.1", "--no-progress")
+            "--strain-rate", "0.1", "--set", "final_strain=0.3", "--no-progress")
     assert r.returncode == 0, r.stderr
     summary = study.read_csv(os.path.join(out, "summary.csv"))
     cases = study.read_csv(os.path.join(out, "cases.csv"))
@@ -100,10 +108,13 @@ def test_size_effect_command_tables_and_report(tmp_path, cli):
     u012 = [c for c in cases if c["load"] == "uniform" and c["size_m"] == 0.12]
     row = next(s for s in summary if s["load"] == "uniform" and s["size_m"] == 0.12)
     assert row["peak_stress_MPa_mean"] == pytest.approx(np.mean([c["peak_stress_MPa"] for c in u012]), rel=1e-5)
-    assert row["U_ratio_mean"] == pytest.approx(np.mean([c["U_ratio"] for c in u012]), rel=1e-5)
+    separated = [c["U_ratio"] for c in u012 if c["separated"] in (True, "True")]
+    assert row["separated"] == len(separated) > 0
+    assert row["U_ratio_mean"] == pytest.approx(np.mean(separated), rel=1e-5)
+    assert all(c["U_ratio"] == "" for c in cases if c["separated"] not in (True, "True"))
     assert all(c["energy_balance_error"] < 0.01 for c in cases)
     fits = json.load(open(os.path.join(out, "fractal.json")))
-    assert set(fits) == {"uniform", "triangular"}
+    assert "uniform" in fits  # triangular only if both sizes separated by the final strain
     for name in ("report.md", "fractal.png", "cracks_uniform.png", "curves_triangular.png",
                  "mean_curves_uniform.png", "fracture_energy_triangular.png"):
         assert os.path.getsize(os.path.join(out, name)) > 0, name
