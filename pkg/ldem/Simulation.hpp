@@ -1,4 +1,4 @@
-// A cube tension test (LDEM_SPEC section 6) from specimen to split:
+// A cube tension test (LDEM_SPEC section 6) from specimen to separation:
 // lattice + random G_f + boundary conditions + central differences + energy
 // bookkeeping. run() is the time-step loop; everything it calls per step is in
 // InternalForces (bars), Integrator (nodes) and Loading (prescribed DOFs).

@@ -123,7 +123,7 @@ class CubeTest:
     # -- running ------------------------------------------------------------
     def run(self, out: Optional[str] = None, progress: Optional[bool] = None,
             plots: bool = True, simulation=None) -> "CubeResult":
-        """Runs the test to split (or the final strain).
+        """Runs the test to separation (or load loss, see stop_at; or the final strain).
 
         out: folder for curve.csv (written row by row), summary.json, curve.png,
         energies.png, cracks.png and bars.vtu; None writes nothing. progress: a

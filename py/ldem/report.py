@@ -94,7 +94,7 @@ def fractal_figure(table, cases, fits, path):
         ax.plot(bb, fit["U_b0_J"] * (bb / fit["b0_m"]) ** fit["d"], "-", color=line.get_color(),
                 label=f"{load}: U(b0)(b/b0)^d, d = {fit['d']:.3f}")
     ax.set(xscale="log", yscale="log", xlabel="cube side b [m]", ylabel="U_num [J]",
-           title=f"fracture energy to split the cube, fractal law with b0 = {B0:g} m")
+           title=f"fracture energy to separate the cube (U_num), fractal law with b0 = {B0:g} m")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     _save(fig, path)
