@@ -52,15 +52,28 @@ def mean_curves_figure(groups, load, sizes, path):
 
 
 def fracture_energy_figure(out, tests, groups, load, sizes, path):
-    """U_frac / U_min (fracture energy dissipated so far over G_f x face area)."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    """U_frac / U_min (fracture energy dissipated so far over G_f x face area)
+    against the mean strain on a log axis, to separation: each specimen faint
+    with its load loss (|) and separation (x) marked, and their mean."""
+    fig, ax = plt.subplots(figsize=(7.0, 4.6))
     for size in sizes:
-        t = next(t for t in tests if t.load == load and t.size == size)
-        u_min = load_summary(case_dir(out, t))["min_fracture_energy_J"]
-        x, y = mean_curve(groups[(load, size)], "fracture_J", scale=1.0 / u_min)
-        ax.plot(x * 1e4, y, lw=1.6, label=f"{size:g} m")
-    _strain_axis(ax, "U_frac / U_min")
-    ax.set_title(f"normalized fracture energy (mean of specimens), {load} loading")
+        group = [t for t in tests if t.load == load and t.size == size]
+        u_min = load_summary(case_dir(out, group[0]))["min_fracture_energy_J"]
+        color = None
+        for t, c in zip(group, groups[(load, size)]):
+            s = load_summary(case_dir(out, t))
+            keep = c["mean_strain"] > 0
+            line, = ax.plot(c["mean_strain"][keep], c["fracture_J"][keep] / u_min, lw=0.6, alpha=0.35, color=color)
+            color = line.get_color()
+            for event, marker in (("load_loss", "|"), ("separation", "x")):
+                if s.get(event):
+                    ax.plot(s[event]["mean_strain"], s[event]["fracture_energy_J"] / u_min, marker, color=color,
+                            ms=7)
+        x, y = mean_curve(groups[(load, size)], "fracture_J", scale=1.0 / u_min, log_from=1e-5)
+        ax.plot(x, y, lw=1.8, color=color, label=f"{size:g} m (mean)")
+    ax.set(xscale="log", xlim=(1e-5, None), xlabel="mean strain", ylabel="U_frac / U_min")
+    ax.grid(alpha=0.3, which="both")
+    ax.set_title(f"fracture energy to separation, {load} (|: load lost, x: separated)", fontsize=10)
     ax.legend(fontsize=8)
     _save(fig, path)
 
@@ -84,11 +97,11 @@ def fractal_figure(table, cases, fits, path):
     """Mean U_num per size (and each case's, faint) with the fitted law, log-log."""
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for load, fit in fits.items():
-        rows = [r for r in table if r["load"] == load]
+        rows = [r for r in table if r["load"] == load and r["U_num_J_mean"] != ""]  # sizes with separated runs
         b = np.array([r["size_m"] for r in rows])
         u = np.array([r["U_num_J_mean"] for r in rows])
         line, = ax.plot(b, u, "o", label=f"{load}: mean U_num")
-        each = [(c["size_m"], c["U_num_J"]) for c in cases if c["load"] == load]
+        each = [(c["size_m"], c["U_num_J"]) for c in cases if c["load"] == load and c["U_num_J"] != ""]
         ax.plot(*zip(*each), ".", color=line.get_color(), alpha=0.35)
         bb = np.geomspace(b.min(), b.max(), 50)
         ax.plot(bb, fit["U_b0_J"] * (bb / fit["b0_m"]) ** fit["d"], "-", color=line.get_color(),
@@ -147,7 +160,7 @@ def size_effect_report(out, tests, cases, table, fits, groups) -> None:
         figs += [(f"curves_{load}.png", f"every specimen and the mean, {load}"),
                  (f"mean_curves_{load}.png", f"mean curves of all sizes, {load}"),
                  (f"cracks_{load}.png", f"crack pictures (central slice, seed 1), {load}"),
-                 (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain, {load}")]
+                 (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain (log) to separation, {load}")]
     if fits:
         fractal_figure(table, cases, fits, os.path.join(out, "fractal.png"))
         figs.append(("fractal.png", "U_num against size, fractal law"))
@@ -193,10 +206,10 @@ def write_report(out, tests, table, fits, figs) -> None:
                          if ref else "-",
                          f"{r['strain_at_peak_mean']:.3e}", f"{r['strain_at_peak_cv']:.3f}",
                          f"{r['ref_strain_at_peak']:.2e} ({_pct(r['strain_at_peak_mean'], r['ref_strain_at_peak'])})"
-                         if ref else "-", f"{r['wall_s_mean']:.0f}"])
+                         if ref else "-", f"{r['edge_strain_at_peak_mean']:.3e}", f"{r['wall_s_mean']:.0f}"])
         md += [f"### {load}", "", _md_table(
             ["size [m]", "seeds", "peak [MPa]", "CV", "study (Table 3)", "strain at peak", "CV", "study",
-             "wall [s] per case"], rows), ""]
+             "at the most-pulled edge", "wall [s] per case"], rows), ""]
         rows = []
         for r in (r for r in table if r["load"] == load and r["mean_curve_peak_MPa"] != ""):
             ref = r["ref_peak_stress_MPa"] != ""
@@ -216,11 +229,12 @@ def write_report(out, tests, table, fits, figs) -> None:
            "load was lost, and the cheapest cut (the least energy of any set of bars whose rupture separates the "
            "faces: a lower bound of U_num). U_min = E[G_f] x face area; corrected c_a = 0.1385 x E[U_num/U_min] "
            "(the study's proposal for coarser meshes).", ""]
-    rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}", _num(r["U_num_J_mean"], ".4g"),
+    rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}",
+             _num(r["separation_strain_mean"], ".3g"), _num(r["U_num_J_mean"], ".4g"),
              f"{r['U_min_J']:.4g}", _num(r["U_ratio_mean"], ".3f"), _num(r["U_ratio_cv"], ".3f"),
              _num(r["U_loss_ratio_mean"], ".3f"), f"{r['U_mincut_ratio_mean']:.3f}", _num(r["ca_corrected"], ".4f"),
              str(r["energy_errors"])] for r in table]
-    md += [_md_table(["load", "size [m]", "separated", "U_num [J]", "U_min [J]", "U_num/U_min", "CV",
+    md += [_md_table(["load", "size [m]", "separated", "strain at separation", "U_num [J]", "U_min [J]", "U_num/U_min", "CV",
                       "at load loss", "cheapest cut", "corrected c_a", "energy errors"], rows), ""]
     if fits:
         md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]

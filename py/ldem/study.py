@@ -190,12 +190,13 @@ def load_curves(out: str, tests: Sequence[CubeTest]) -> Dict[tuple, List[dict]]:
     return groups
 
 
-def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400):
+def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400, log_from=None):
     """Mean of a curve column over specimens on a common mean-strain grid of n
-    points. A specimen that stopped early carries on at after_end (0 for the
-    stress of a split specimen), or at its last value (the final fracture energy)."""
+    points (linear from 0, or geometric from log_from). A specimen that stopped
+    early carries on at after_end (0 for the stress of a separated specimen), or
+    at its last value (the final fracture energy)."""
     top = max(c["mean_strain"][-1] for c in curves)
-    grid = np.linspace(0.0, top, n)
+    grid = np.linspace(0.0, top, n) if log_from is None else np.geomspace(log_from, top, n)
     ys = [np.interp(grid, c["mean_strain"], c[column] * scale,
                     right=(c[column] * scale)[-1] if after_end is None else after_end) for c in curves]
     return grid, np.mean(ys, axis=0)
@@ -257,7 +258,8 @@ def mean_cv(values) -> tuple:
 
 SUMMARY_COLUMNS = ("load", "size_m", "seeds", "separated", "energy_errors", "peak_stress_MPa_mean",
                    "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv", "edge_strain_at_peak_mean",
-                   "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv", "U_loss_ratio_mean", "U_loss_ratio_cv",
+                   "separation_strain_mean", "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv",
+                   "U_loss_ratio_mean", "U_loss_ratio_cv",
                    "U_mincut_ratio_mean", "U_mincut_ratio_cv", "ca_corrected", "ref_peak_stress_MPa",
                    "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak", "wall_s_mean")
 
@@ -285,6 +287,7 @@ def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, Lis
             loss, loss_cv = _mean_cv_or_empty([r["U_loss_ratio"] for r in g])
             cut, cut_cv = mean_cv([r["U_mincut_ratio"] for r in g])
             u_num = [r["U_num_J"] for r in g if r["U_num_J"] != ""]
+            sep_strain = [r["separation_strain"] for r in g if r["separation_strain"] != ""]
             ref = REFERENCE_UNIFORM.get(round(size, 6)) if load == "uniform" else None
             out.append({"load": load, "size_m": size, "seeds": len(g),
                         "separated": sum(1 for r in g if r["separated"] in (True, "True")),
@@ -292,6 +295,7 @@ def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, Lis
                         "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain,
                         "strain_at_peak_cv": strain_cv,
                         "edge_strain_at_peak_mean": float(np.mean([r["edge_strain_at_peak"] for r in g])),
+                        "separation_strain_mean": float(np.mean(sep_strain)) if sep_strain else "",
                         "U_num_J_mean": float(np.mean(u_num)) if u_num else "", "U_min_J": g[0]["U_min_J"],
                         "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv, "U_loss_ratio_mean": loss,
                         "U_loss_ratio_cv": loss_cv, "U_mincut_ratio_mean": cut, "U_mincut_ratio_cv": cut_cv,
