@@ -172,11 +172,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     RunSummary s;
     double maxWork = 0, maxResidual = 0;
     LoadLossDetector loadLoss(splitWindow_, run_.stopFraction);
-    // Separation is checked every kSeparationCheck steps at the most, once the
-    // stress has fallen below half the peak: a check costs about as much as one
-    // or two steps (union-find over the bars), so this keeps it near 1 %.
-    constexpr std::int64_t kSeparationCheck = 100;
-    std::int64_t lastCheck = -kSeparationCheck;
+    std::int64_t lastCheck = -kSeparationCheckSteps;
     // The peak, at every step: the stress of state n is known once its forces are.
     auto trackPeak = [&](double tn) {
         const double stress = bottomStress();
@@ -215,7 +211,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
             drive_.speedupStart = time_;
         }
-        if (p.broken > 0 && p.stressBottom < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheck) {
+        if (p.broken > 0 && p.stressBottom < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheckSteps) {
             lastCheck = step_;
             if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
         }

@@ -100,6 +100,9 @@ public:
     // return false to stop), speeds the drive up once the load is lost, stops
     // at separation (or load loss, see RunParams::stopAt) or the final strain.
     RunSummary run(const std::function<bool(const CurvePoint&)>& observer = {});
+    // Separation is tested on record steps at most every this many steps, once
+    // the stress has fallen below half the peak (ldem-bench prints its cost).
+    static constexpr std::int64_t kSeparationCheckSteps = 100;
 
     // One step, forces at x(n) then x(n+1), in one pass over the lattice.
     void step();

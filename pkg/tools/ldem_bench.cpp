@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     // Each repetition: `steps` whole steps (bar pass, node pass, integration,
     // boundary conditions, work and damping bookkeeping), plus the two halves
     // timed apart on a few extra steps.
-    std::vector<double> perStep, forces, advance;
+    std::vector<double> perStep, forces, advance, separation;
     for (int r = 0; r < repeats; ++r) {
         auto t = std::chrono::steady_clock::now();
         for (int s = 0; s < steps; ++s) sim.step();
@@ -80,15 +80,22 @@ int main(int argc, char** argv) {
             ta += seconds(t);
         }
         forces.push_back(tf / 10), advance.push_back(ta / 10);
+        // One separation test (union-find over the intact bars), the cost that
+        // run() adds once per kSeparationCheckSteps steps after the peak.
+        t = std::chrono::steady_clock::now();
+        volatile bool joined = sim.facesJoined();
+        (void)joined;
+        separation.push_back(seconds(t));
     }
     const double bars = double(sim.lattice().numBars());
     const long rss = peakResidentBytes();
     std::printf(
         "{\"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
         "\"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, \"ns_per_bar_integration\": %.4f, "
-        "\"setup_s\": %.3f, \"peak_rss_bytes\": %ld, \"bytes_per_bar\": %.2f}\n",
+        "\"separation_check_share\": %.4f, \"setup_s\": %.3f, \"peak_rss_bytes\": %ld, \"bytes_per_bar\": %.2f}\n",
         modules, (long long)sim.lattice().numBars(), (long long)sim.lattice().numNodes(), steps, repeats,
         ldem::maxThreads(), median(perStep) / bars * 1e9, median(forces) / bars * 1e9,
-        median(advance) / bars * 1e9, setup, rss, rss / bars);
+        median(advance) / bars * 1e9,
+        median(separation) / (ldem::Simulation::kSeparationCheckSteps * median(perStep)), setup, rss, rss / bars);
     return 0;
 }
