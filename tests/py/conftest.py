@@ -5,20 +5,64 @@ import sys
 import pytest
 
 ROOT = os.environ.get("LDEM_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
-BUILD_PY = os.path.join(ROOT, "build", "python")
-if BUILD_PY not in sys.path:
+
+
+def _build_python() -> str:
+    """The python folder of the build under test: LDEM_BUILD_PYTHON (set by
+    tests/CMakeLists.txt), else the first PYTHONPATH entry that holds ldem.
+    Never a guessed folder: the installed package (/usr/local) or another build
+    would be tested instead without anyone noticing."""
+    path = os.environ.get("LDEM_BUILD_PYTHON")
+    if not path:
+        for entry in os.environ.get("PYTHONPATH", "").split(os.pathsep):
+            if entry and os.path.isfile(os.path.join(entry, "ldem", "__init__.py")):
+                path = entry
+                break
+    if not path:
+        raise pytest.UsageError("tests/py: set LDEM_BUILD_PYTHON (or PYTHONPATH) to the build's python folder, "
+                                "e.g. LDEM_BUILD_PYTHON=build/python; CTest sets it (tests/CMakeLists.txt)")
+    path = os.path.realpath(path)
+    if not os.path.isfile(os.path.join(path, "ldem", "__init__.py")):
+        raise pytest.UsageError(f"tests/py: LDEM_BUILD_PYTHON={path} holds no ldem package")
+    return path
+
+
+BUILD_PY = _build_python()
+if sys.path[:1] != [BUILD_PY]:
     sys.path.insert(0, BUILD_PY)
+
+import ldem  # noqa: E402  (after the path is set)
+import ldem._core  # noqa: E402
+
+
+def _check_imported_from_build():
+    for module in (ldem, ldem._core):
+        where = os.path.realpath(module.__file__)
+        if os.path.commonpath([where, BUILD_PY]) != BUILD_PY:
+            raise pytest.UsageError(f"tests/py: {module.__name__} was imported from {where}, not from the build "
+                                    f"under test {BUILD_PY}: another ldem comes first on sys.path")
+
+
+_check_imported_from_build()
+
+
+def subprocess_env(**extra) -> dict:
+    """The environment of every subprocess of the tests (python3, ldem, yade-double):
+    the build under test first on PYTHONPATH, nothing else of ours."""
+    return dict(os.environ, PYTHONPATH=BUILD_PY, LDEM_BUILD_PYTHON=BUILD_PY, **extra)
+
 
 # A fast cube: 4^3 modules, a strain rate that is still quasi-static at this
 # size (peak within 0.3 % of the rate 0.05 one), stopped when the load is lost.
 FAST = dict(size=0.08, strain_rate=0.1, stop_at="load_loss")
 
+LDEM_SCRIPT = os.path.join(ROOT, "py", "bin", "ldem")
 
-def run_cli(*args, cwd=None):
+
+def run_cli(*args, cwd=None, timeout=600):
     """Runs the `ldem` command itself (py/bin/ldem, what `ldem` on PATH is) on the build tree."""
-    env = dict(os.environ, PYTHONPATH=BUILD_PY)
-    return subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "py", "bin", "ldem"), *args], capture_output=True,
-                          text=True, env=env, cwd=cwd, timeout=600)
+    return subprocess.run(["/usr/bin/python3", LDEM_SCRIPT, *args], capture_output=True,
+                          text=True, env=subprocess_env(), cwd=cwd, timeout=timeout)
 
 
 @pytest.fixture

@@ -1,5 +1,5 @@
 """YADE bridge (issue 5): the one-bar law check and the 0.12 m cube cross-check,
-both run by YADE itself (`yade-double -n -x`), skipped where YADE is missing."""
+both run by YADE itself (`yade-double -n -x`); YADE missing is a failure (install.sh installs it)."""
 import os
 import re
 import shutil
@@ -7,7 +7,8 @@ import subprocess
 
 import pytest
 
-ROOT = os.environ.get("LDEM_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+from conftest import ROOT, subprocess_env
+
 NUM = r"([-+0-9.eE]+|nan|inf)"
 
 
@@ -15,12 +16,12 @@ NUM = r"([-+0-9.eE]+|nan|inf)"
 def yade():
     exe = shutil.which("yade-double")
     if exe is None:
-        pytest.skip("yade-double is not installed")
+        pytest.fail("yade-double is not installed (README: install.sh installs Debian's yade)")
     return exe
 
 
 def run_yade(exe, script, *args, cwd):
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "build", "python"))
+    env = subprocess_env()
     return subprocess.run([exe, "-n", "-x", os.path.join(ROOT, "scripts", script), *args], capture_output=True,
                           text=True, cwd=cwd, timeout=900, env=env)
 

@@ -1,5 +1,5 @@
 """scripts/yade_native_cpm.py (YADE's native Cpm concrete model on the cube test)
-on a tiny cube, run by YADE itself; skipped where YADE is missing."""
+on a tiny cube, run by YADE itself; YADE missing is a failure (install.sh installs it)."""
 import json
 import os
 import re
@@ -8,16 +8,17 @@ import subprocess
 
 import pytest
 
-ROOT = os.environ.get("LDEM_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
+from conftest import ROOT, subprocess_env
+
 NUM = r"([-+0-9.eE]+|nan|inf)"
 
 
 def test_native_cpm_tiny_cube(tmp_path):
     exe = shutil.which("yade-double")
     if exe is None:
-        pytest.skip("yade-double is not installed")
+        pytest.fail("yade-double is not installed (README: install.sh installs Debian's yade)")
     out = tmp_path / "cpm"
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "build", "python"))
+    env = subprocess_env()
     r = subprocess.run([exe, "-j", "1", "-n", "-x", os.path.join(ROOT, "scripts", "yade_native_cpm.py"),
                         "--size", "0.06", "--spheres-in-cell", "300", "--final-strain", "4e-4", "--out", str(out)],
                        capture_output=True, text=True, cwd=tmp_path, timeout=300, env=env)
@@ -41,8 +42,8 @@ def test_native_cpm_tiny_cube(tmp_path):
 def test_native_cpm_bad_argument(tmp_path):
     exe = shutil.which("yade-double")
     if exe is None:
-        pytest.skip("yade-double is not installed")
-    env = dict(os.environ, PYTHONPATH=os.path.join(ROOT, "build", "python"))
+        pytest.fail("yade-double is not installed (README: install.sh installs Debian's yade)")
+    env = subprocess_env()
     r = subprocess.run([exe, "-n", "-x", os.path.join(ROOT, "scripts", "yade_native_cpm.py"), "--radius", "-1"],
                        capture_output=True, text=True, cwd=tmp_path, timeout=120, env=env)
     assert r.returncode == 2, r.stdout + r.stderr
