@@ -7,10 +7,10 @@ import subprocess
 
 import pytest
 
-from conftest import BUILD_PY, ROOT
+from conftest import ROOT, subprocess_env
 
 SCRIPT = os.path.join(ROOT, "scripts", "cube_tension.py")
-ENV = dict(os.environ, PYTHONPATH=BUILD_PY)
+ENV = subprocess_env()
 
 
 def summary(folder):
@@ -29,7 +29,7 @@ def test_scene_script_under_python3(tmp_path):
 def test_scene_script_under_yade_batch(tmp_path):
     batch = shutil.which("yade-double-batch")
     if batch is None:
-        pytest.skip("yade-double-batch is not installed")
+        pytest.fail("yade-double-batch is not installed (README: install.sh installs Debian's yade)")
     table = tmp_path / "sweep.table"
     table.write_text("description size load seed\nu8_s1 0.08 'uniform' 1\nt8_s2 0.08 'triangular' 2\n")
     r = subprocess.run([batch, "--job-threads", "1", "--log", str(tmp_path / "@.log"), str(table), SCRIPT],

@@ -129,7 +129,7 @@ def test_study_bad_input_is_one_line(tmp_path, cli):
 
 
 def test_cases_on_a_local_dask_cluster(tmp_path):
-    distributed = pytest.importorskip("distributed")
+    import distributed  # README: install.sh installs python3-distributed; missing is a failure
     out = str(tmp_path / "dask")
     tests = study.damping_tests(0.04, [0.02, 1.5], ["uniform"], **TINY)
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as c:
