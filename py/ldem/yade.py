@@ -7,8 +7,9 @@ Use inside YADE (``yade-double -n -x script.py``)::
     from ldem import _core
     lp = _core.LoadingParams(); rp = _core.RunParams(); rp.zeta = 0
     sim = _core.Simulation(6, 6, 6, 0.02, _core.Material(), lp, rp)
-    spec = ldem.yade.CubeSpecimen(sim, lp)     # fills YADE's O
-    result = spec.run()                          # dict: peak_stress, strain_at_peak, curve...
+    spec = ldem.yade.CubeSpecimen(sim)         # fills YADE's O
+    result = spec.run()                          # to separation, as sim.run() would
+    # dict: peak_stress, strain_at_peak, load_loss, separation, stop_reason, curve...
 
 Importing this module does not import YADE; the functions that need it import
 it when they are called, so the module can be imported (and its pure helpers
@@ -105,11 +106,28 @@ lattice: lower face z held (x, y held too, or on rollers with x, y pinned at
 corner (0,0) and y at (nx,0) if bottom_lateral_free); upper face z prescribed,
 u_z = w U(t) with w = 1 (uniform) or x0/width (triangular), x, y free unless
 top_lateral_free is False. U(t) is ldem's Drive (smooth 1 - cos start over
-ramp_time, then v0 = strain_rate * height). Each step, before the forces,
+ramp_time, then v0 = strain_rate * height; once the load is lost, loss_speedup
+times faster, with the same smooth start: ``CubeSpecimen.drive``, bit for bit
+pkg/ldem/Loading.cpp's Drive::displacement). Each step, before the forces,
 the drive sets the upper nodes to z0 + w U(t_n) and their velocity to
 w (U(t_n+1) - U(t_n))/dt (YADE moves blocked DOFs with their velocity).
+
+Load loss and separation
+------------------------
+``CubeSpecimen.run`` applies Simulation::run's rules (pkg/ldem/Simulation.cpp)
+to YADE's state: the peak at every step; on ldem's record steps (every
+sim.record_every steps) the load-loss test (_core.LoadLossDetector; from then on
+the drive speeds up) and, once bars have broken and the stress is below half the
+peak, at most every SEPARATION_CHECK steps, the separation test:
+_core.nodes_joined (ldem's union-find) over the bars still intact, kappa < eps_r,
+with kappa tracked by the RuptureGuard from the law's own strains, between the
+upper and lower face nodes (body id = ldem node id, interaction k = ldem bar k).
+The run stops at separation (or at load loss with stop_at="load_loss", or at
+the final strain), and reports both events with the fracture energy dissipated
+by then, sum over the bars of ldem's dissipatedEnergy(kappa).
 """
 import math
+from fractions import Fraction
 
 import numpy as np
 
@@ -121,6 +139,42 @@ BROKEN_ONSET = 1e-300
 # A bar is switched to "ruptured" once its strain reaches eps_r (1 - GUARD_MARGIN);
 # 0 because the guard's strain is bit-identical to the law's (see RuptureGuard).
 GUARD_MARGIN = 0.0
+# Steps between two separation tests at the least: Simulation::run's kSeparationCheck.
+SEPARATION_CHECK = 100
+
+
+def _fma(a, b, c):
+    """a b + c rounded once, as the fused multiply-add GCC emits for ldem's Drive
+    (-march=native on a CPU with FMA); Fraction arithmetic is exact and
+    float(Fraction) rounds to nearest even."""
+    return float(Fraction(a) * Fraction(b) + Fraction(c))
+
+
+def _mul_add(a, b, c):
+    """a b + c rounded twice, as without FMA."""
+    return a * b + c
+
+
+def _ramp_integral(t, tr, mul_add=_fma):
+    """Loading.cpp's smoothRampIntegral with the same roundings: integral over
+    [0, t] of a velocity rising from 0 to 1 as (1 - cos(pi t/tr))/2."""
+    if t <= 0:
+        return 0.0
+    if t < tr:
+        return 0.5 * mul_add(-(tr / math.pi), math.sin(math.pi * t / tr), t)
+    return t - 0.5 * tr
+
+
+def drive_mul_add(sim):
+    """_fma or _mul_add, whichever reproduces sim's own U(t) on the ramp bit for
+    bit: whether the compiler fused ldem's Drive's multiply-adds (it does with
+    -march=native on a CPU with FMA)."""
+    v0, tr = sim.loading.strain_rate * sim.height, sim.ramp_time
+    ts = [tr * k / 97 for k in range(1, 97)]
+    for f in (_fma, _mul_add):
+        if all(v0 * _ramp_integral(t, tr, f) == sim.drive_displacement(t) for t in ts):
+            return f
+    raise RuntimeError("ldem.yade cannot reproduce ldem's drive U(t) bit for bit")
 
 
 def hillerborg_force(eps, kappa, EA, eps_p, eps_r):
@@ -300,6 +354,20 @@ class RuptureGuard:
         damaged = (self.kappa > self.bars.eps_p) & ~broken
         return int(damaged.sum()), int(broken.sum())
 
+    def intact(self):
+        """1 for every bar that can still carry tension, kappa < eps_r (ldem's
+        intactBars), in ldem's bar order, for _core.nodes_joined."""
+        return (self.kappa < self.bars.eps_r).astype(np.uint8)
+
+    def fracture_energy(self):
+        """Energy dissipated by the bars [J]: ldem's dissipatedEnergy(kappa) summed
+        (0 up to eps_p, 1/2 L EA eps_p eps_r from eps_r on, linear in between)."""
+        b, k = self.bars, self.kappa
+        full = 0.5 * b.L * b.EA * b.eps_p * b.eps_r
+        span = np.where(b.eps_r > b.eps_p, b.eps_r - b.eps_p, 1.0)  # clamped bars: never used
+        e = np.where(k <= b.eps_p, 0.0, np.where(k >= b.eps_r, full, full * (k - b.eps_p) / span))
+        return float(e.sum())
+
 
 def cube_constraints(sim):
     """ldem's prescribed DOFs (Simulation.prescribed_dofs) in YADE's terms: per
@@ -314,10 +382,17 @@ def cube_constraints(sim):
     return held, np.array([weight[int(n)] for n in sim.top_nodes])
 
 
+def _event(step, time, mean_strain, fracture):
+    """An event of the run, with the keys of ldem cube's summary.json."""
+    return {"step": int(step), "time_s": float(time), "mean_strain": float(mean_strain),
+            "fracture_energy_J": float(fracture)}
+
+
 class CubeSpecimen:
     """The ldem specimen ``sim`` (an ldem._core.Simulation) rebuilt in YADE's O:
     same nodes, masses, bars, per-bar eps_r (from the same seed, read from
-    sim.eps_r), boundary conditions, drive U(t) and dt."""
+    sim.eps_r), boundary conditions, drive U(t) (with its speed-up after the load
+    loss), dt and record steps."""
 
     def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
         if sim.steps != 0:
@@ -332,9 +407,16 @@ class CubeSpecimen:
         self.dt = sim.dt
         self.radius = radius_factor * lat.L0
         held, self.top_weights = cube_constraints(sim)
-        self.mean_top_weight = float(self.top_weights.mean())
+        self.mean_top_weight = sum(float(w) for w in self.top_weights) / len(self.top_weights)  # ldem's order
         self.bottom = [int(n) for n in sim.bottom_nodes]
         self.top = [int(n) for n in sim.top_nodes]
+        # ldem's Drive: v0, ramp, and the speed-up from the load loss on (never, until then)
+        self.v0 = sim.loading.strain_rate * sim.height
+        self.speedup = sim.loading.loss_speedup
+        self.ramp_time = sim.ramp_time
+        self.speedup_start = math.inf
+        self._mul_add = drive_mul_add(sim)
+        self.record_every = sim.record_every
 
         self._name = _register(name, self)
         O.engines = make_engines(
@@ -359,14 +441,33 @@ class CubeSpecimen:
         self.curve = []  # (step, time, mean_strain, stress_bottom, stress_top, damaged, broken)
         self.peak_stress, self.strain_at_peak = 0.0, 0.0
         self.stop_reason = ""
-        self.final_strain, self.callback = math.inf, None
+        self.final_strain, self.callback, self.stop_at = math.inf, None, "separation"
+        self.load_loss = self.separation = None
+        self.separation_checks = 0
+        self._last_check = -SEPARATION_CHECK
         self.split = _core.LoadLossDetector(sim.split_window, 0.01)
+
+    def drive(self, t):
+        """U(t) [m], pkg/ldem/Loading.cpp's Drive::displacement with the same
+        roundings: sim's U(t) (never sped up, sim has not run), plus
+        (speedup - 1) v0 rampIntegral(t - t_loss) once the load is lost."""
+        U = self.sim.drive_displacement(t)
+        if t <= self.speedup_start:
+            return U
+        fma = self._mul_add
+        return fma((self.speedup - 1) * self.v0, _ramp_integral(t - self.speedup_start, self.ramp_time, fma), U)
+
+    def faces_joined(self):
+        """Some chain of intact bars (kappa < eps_r) joins the upper and lower
+        faces: ldem's own test (_core.nodes_joined), on YADE's bar states."""
+        self.separation_checks += 1
+        return _core.nodes_joined(self.sim.lattice, self.guard.intact(), self.top, self.bottom)
 
     # -- engines -------------------------------------------------------------
     def _before_forces(self):
         O = self.O
         t, dt = O.time, O.dt
-        U, Unext = self.sim.drive_displacement(t), self.sim.drive_displacement(t + dt)
+        U, Unext = self.drive(t), self.drive(t + dt)
         for s, z0, w in zip(self.top_states, self.z0_top, self.top_weights):
             p, v = s.pos, s.vel
             s.pos = type(p)(p[0], p[1], z0 + w * U)
@@ -387,33 +488,65 @@ class CubeSpecimen:
         if stress > self.peak_stress:
             self.peak_stress, self.strain_at_peak = stress, strain
         keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
-        if self.split.update(O.time, stress, self.peak_stress, broken):
-            self.stop_reason = "load_lost"
-        elif strain >= self.final_strain:
-            self.stop_reason = "final_strain"
-        elif not keep:
+        if O.iter % self.record_every == 0:  # ldem's record steps: its events and stops come only there
+            self._events(stress, broken)
+        if not self.stop_reason and not keep:
             self.stop_reason = "stopped"
         if self.stop_reason:
             O.pause()
 
+    def _events(self, stress, broken):
+        """Simulation::run's tests at a record step, in its order."""
+        O = self.O
+        n, t = O.iter, O.time
+        mean_strain = self.drive(t) * self.mean_top_weight / self.height  # ldem's meanStrainAt(t)
+        if self.load_loss is None and self.split.update(t, stress, self.peak_stress, broken):
+            self.load_loss = _event(n, t, mean_strain, self.guard.fracture_energy())
+            self.speedup_start = t  # U(t_n) unchanged; from t_n+1 on, faster
+        if broken > 0 and stress < 0.5 * self.peak_stress and n - self._last_check >= SEPARATION_CHECK:
+            self._last_check = n
+            if not self.faces_joined():
+                self.separation = _event(n, t, mean_strain, self.guard.fracture_energy())
+        if self.separation is not None:
+            self.stop_reason = "separated"
+        elif self.stop_at == "load_loss" and self.load_loss is not None:
+            self.stop_reason = "load_lost"
+        elif mean_strain >= self.final_strain:
+            self.stop_reason = "final_strain"
+
     # -- run -----------------------------------------------------------------
-    def run(self, final_strain=2e-3, stop_fraction=0.01, max_steps=None, callback=None):
-        """Runs until ldem's load-loss test (_core.LoadLossDetector: stress averaged over
-        the split window < stop_fraction x peak, after bars broke), the mean
-        strain reaches final_strain, or callback(row) returns
-        False. Returns a dict with peak_stress [Pa], strain_at_peak, steps,
-        stop_reason, curve (numpy array of step, time, mean_strain,
-        stress_bottom, stress_top, damaged, broken), guard_early, lost_bars."""
-        self.final_strain, self.callback = final_strain, callback
+    def run(self, final_strain=None, stop_fraction=None, stop_at="separation", max_steps=None, callback=None):
+        """Runs as ldem's Simulation.run: until separation (no chain of intact bars
+        joins the faces; the drive sped up by loss_speedup from the load loss on),
+        or with stop_at="load_loss" until the load-loss test (_core.LoadLossDetector:
+        stress averaged over the split window < stop_fraction x peak, after bars
+        broke), or until the mean strain reaches final_strain, or callback(row)
+        returns False. final_strain and stop_fraction default to ldem's RunParams.
+        Returns a dict with peak_stress [Pa], strain_at_peak, steps (the step of
+        the last row, as ldem's summary.steps), stop_reason ("separated",
+        "load_lost", "final_strain", "stopped" or "max_steps"), load_loss and
+        separation (None, or dict step, time_s, mean_strain, fracture_energy_J,
+        as in ldem's summary.json), fracture_energy_J (at the end),
+        separation_checks, curve (numpy array of step, time, mean_strain,
+        stress_bottom, stress_top, damaged, broken: every step), guard_early,
+        lost_bars."""
+        if stop_at not in ("separation", "load_loss"):
+            raise ValueError(f"unknown stop event '{stop_at}' (expected separation or load_loss)")
+        defaults = _core.RunParams()
+        final_strain = defaults.final_strain if final_strain is None else final_strain
+        stop_fraction = defaults.stop_fraction if stop_fraction is None else stop_fraction
+        self.final_strain, self.callback, self.stop_at = final_strain, callback, stop_at
         self.split = _core.LoadLossDetector(self.sim.split_window, stop_fraction)
         self.stop_reason = ""
-        if max_steps is None:  # time to the final strain + ramp, with margin
-            v0 = self.sim.loading.strain_rate * self.height
-            t_final = final_strain * self.height / (v0 * self.mean_top_weight) + 0.5 * self.sim.ramp_time
+        if max_steps is None:  # time to the final strain + ramp at the initial rate (no speed-up), with margin
+            t_final = final_strain * self.height / (self.v0 * self.mean_top_weight) + 0.5 * self.ramp_time
             max_steps = int(1.2 * t_final / self.dt) + 10
         self.O.run(int(max_steps), True)
         if not self.stop_reason:
             self.stop_reason = "max_steps"
-        return dict(peak_stress=self.peak_stress, strain_at_peak=self.strain_at_peak, steps=self.O.iter,
-                    stop_reason=self.stop_reason, curve=np.array(self.curve), guard_early=list(self.guard.early),
+        steps = int(self.curve[-1][0]) if self.curve else 0
+        return dict(peak_stress=self.peak_stress, strain_at_peak=self.strain_at_peak, steps=steps,
+                    stop_reason=self.stop_reason, load_loss=self.load_loss, separation=self.separation,
+                    fracture_energy_J=self.guard.fracture_energy(), separation_checks=self.separation_checks,
+                    curve=np.array(self.curve), guard_early=list(self.guard.early),
                     lost_bars=self.bars.check_alive())
