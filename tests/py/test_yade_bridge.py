@@ -1,5 +1,6 @@
-"""YADE bridge (issue 5): the one-bar law check and the 0.12 m cube cross-check,
-both run by YADE itself (`yade-double -n -x`); YADE missing is a failure (install.sh installs it)."""
+"""YADE bridge (issue 5): the one-bar law check, the 0.12 m cube cross-check and
+(issue 10) load loss and separation at the same steps as ldem, all run by YADE
+itself (`yade-double -n -x`); YADE missing is a failure (install.sh installs it)."""
 import os
 import re
 import shutil
@@ -54,3 +55,35 @@ def test_cube_crosscheck_ldem_vs_yade(yade, tmp_path):
     assert abs(py_ - pl) / pl == pytest.approx(rp, rel=1e-2, abs=1e-6)
     assert png.exists() and png.stat().st_size > 0
     assert "lost_interactions=0" in r.stdout
+
+
+@pytest.mark.parametrize("case, energy_tol", [
+    # 0.06 m, uniform, 5 /s, seed 2, a record every 3 steps (YADE's 1185 steps: about 3 s with YADE's start).
+    # Measured: load loss at step 480 in both, fracture energies 6.7e-13 apart; separation at 1185 in both,
+    # 7.9e-9 apart. The tolerance, 1e-7, is 13 x that; ldem alone moves U_num by 20 x any relative change
+    # of the strain rate (1e-11 -> 2e-10), and starting the speed-up one step late moves it by 4.4e-3.
+    (["--modules", "3", "--load", "uniform", "--strain-rate", "5", "--seed", "2", "--record-every", "3"], 1e-7),
+    # 0.04 m, triangular (drive weights 0..1), 5 /s, seed 2, ldem's records (every step at 5 /s). Same steps
+    # (load loss 465, separation 2802), but undamped motion after the load loss is more chaotic here: in ldem
+    # alone a 1e-13 relative change of the strain rate moves U_num by up to 2.7e-3; YADE's is 2.0e-3 apart.
+    (["--modules", "2", "--load", "triangular", "--strain-rate", "5", "--seed", "2", "--record-every", "0"], 1e-2),
+], ids=["uniform_0.06m", "triangular_0.04m"])
+def test_separation_at_the_same_step_as_ldem(yade, tmp_path, case, energy_tol):
+    r = run_yade(yade, "yade_separation.py", *case, "--energy-tol", str(energy_tol), cwd=tmp_path)
+    out = r.stdout + r.stderr
+    assert r.returncode == 0, out
+    assert re.search(r"^ldem: \d+ steps, stop=separated,", r.stdout, re.M), out
+    assert re.search(r"^yade: \d+ steps, stop=separated,.* lost_interactions=0, guard_early=0,", r.stdout, re.M), out
+    ll = re.search(rf"^load_loss step ldem=(\d+) yade=(\d+) fracture_J ldem={NUM} yade={NUM} rel_diff={NUM}$",
+                   r.stdout, re.M)
+    sep = re.search(rf"^separation step ldem=(\d+) yade=(\d+) fracture_J ldem={NUM} yade={NUM} rel_diff={NUM} "
+                    rf"mean_strain ldem={NUM} yade={NUM}$", r.stdout, re.M)
+    assert ll and sep, out
+    assert ll.group(1) == ll.group(2) and sep.group(1) == sep.group(2), out
+    assert 0 < int(ll.group(1)) < int(sep.group(1))
+    e_ll, y_ll, d_ll = (float(g) for g in ll.groups()[2:])
+    assert d_ll <= 1e-10 and y_ll == pytest.approx(e_ll, rel=1e-10)  # before the chaotic part: rounding only
+    e_sep, y_sep, d_sep, s_ldem, s_yade = (float(g) for g in sep.groups()[2:])
+    assert d_sep <= energy_tol and y_sep == pytest.approx(e_sep, rel=energy_tol)
+    assert e_sep > e_ll > 0
+    assert s_yade == pytest.approx(s_ldem, rel=1e-12)  # the same sped-up drive at the same step
