@@ -8,7 +8,9 @@ Prints one line
     peak_stress_MPa ldem=A yade=B rel_diff=C strain_at_peak ldem=D yade=E rel_diff=F
 (after a few diagnostic lines), plots both stress-strain curves to OUT
 (default out/yade_crosscheck.png) and exits 1 if the peaks differ by more than
-2 % or their strains by more than 5 %.
+2 % or their strains by more than 5 %. Both runs stop at the final strain or at
+the load loss, whichever comes first (stop_at load_loss; scripts/yade_separation.py
+runs both to separation).
 
 Run: yade-double -n -x scripts/yade_crosscheck.py [OUT] [--strain-rate R] [--final-strain E] [--seed S]
 """
@@ -71,6 +73,7 @@ def main(argv):
     rp.zeta = 0.0  # no damping: YADE's damping is not ldem's (see ldem.yade)
     rp.final_strain = a.final_strain
     rp.record_every = 1  # every step, as the YADE recorder
+    rp.stop_at = "load_loss"  # the peaks are compared: no need to run on to separation (both sides)
 
     t0 = time.time()
     sim = _core.Simulation(n, n, n, a.L0, _core.Material(), lp, rp)
@@ -81,7 +84,7 @@ def main(argv):
     t0 = time.time()
     fresh = _core.Simulation(n, n, n, a.L0, _core.Material(), lp, rp)  # the same specimen, unrun
     spec = ly.CubeSpecimen(fresh, damping=0.0)
-    res = spec.run(final_strain=a.final_strain, stop_fraction=rp.stop_fraction)
+    res = spec.run(final_strain=a.final_strain, stop_fraction=rp.stop_fraction, stop_at=rp.stop_at)
     t_yade = time.time() - t0
     strain_check = spec.guard.verify()
 
