@@ -75,9 +75,11 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
     const std::int64_t n = lat.numNodes();
     // s = M^-1/2 on free DOFs, 0 on prescribed ones: A = S K S.
     Field3 s(n);
+    std::int64_t freeDofs = 0;
     for (std::int64_t i = 0; i < n; ++i) {
         const double r = 1.0 / std::sqrt(lat.mass[i]);
         s.x[i] = (mask[i] & 1) ? 0 : r, s.y[i] = (mask[i] & 2) ? 0 : r, s.z[i] = (mask[i] & 4) ? 0 : r;
+        freeDofs += !(mask[i] & 1) + !(mask[i] & 2) + !(mask[i] & 4);
     }
     Field3 q(n), qPrev(n), w(n), tmp(n);
     BarForceBuffers barWork;
@@ -113,8 +115,11 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         axpy(w, 1.0, q, -a);
         const double b = std::sqrt(dot(w, w));
         alpha.push_back(a);
-        // Krylov space exhausted (tiny lattices): the Ritz values are exact.
-        const bool exhausted = b <= 1e-12 * std::abs(a);
+        // Krylov space exhausted (tiny lattices): the Ritz values are exact. Its
+        // dimension is at most the number of free DOFs; going on past it (b is
+        // then rounding noise, not always below the threshold) adds spurious
+        // Ritz values: a 1-module cube found omega_1 = 0 and ran into NaN.
+        const bool exhausted = b <= 1e-12 * std::abs(a) || it >= freeDofs;
         if (it == nextCheck || exhausted || it == maxIterations) {
             // A Ritz pair (theta, s) has residual |beta_k s_k| and an eigenvalue
             // lies within it: converged when both extremes are that close.

@@ -50,6 +50,15 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
     con_ = cubeTestConstraints(lat_, load_);
 
     freq_ = latticeFrequencies(lat_, con_.mask);
+    // A mechanism (a motion that stretches no bar) has omega_1 = 0: no damping
+    // (D_f = 2 zeta omega_1), an infinite smooth start, NaN at once.
+    if (!(freq_.omega1 > 1e-6 * freq_.omegaMax)) {
+        std::ostringstream msg;
+        msg << "the constraints leave a mechanism: omega_1 = " << freq_.omega1 << " rad/s (omega_max = "
+            << freq_.omegaMax << " rad/s); e.g. one module with a laterally free upper face turns about the "
+            << "vertical axis: use at least 2 modules a side or hold the upper face laterally";
+        throw std::invalid_argument(msg.str());
+    }
     const double limit = stableTimeStepLimit();
     if (run_.dt > limit) {
         std::ostringstream msg;

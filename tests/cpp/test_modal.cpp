@@ -16,6 +16,7 @@
 #include "ldem/Loading.hpp"
 #include "ldem/Modal.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/Simulation.hpp"
 
 using namespace ldem;
 
@@ -142,6 +143,40 @@ void checkFrequencies(int n, bool rollers) {
 
 }  // namespace
 
+// The smallest cubes: the Krylov space is exhausted within a few iterations
+// (11 free DOFs for one module); Lanczos must stop there, not add ghosts.
+TEST(Modal, LanczosAgainstDenseTwoModulesRollers) { checkFrequencies(2, true); }
+
+// One module with a laterally free upper face is a mechanism: the upper face
+// turns about the vertical axis without stretching a bar (edges rigid, the
+// corner-centre bars perpendicular to the motion). Lanczos finds omega_1 = 0
+// (the dense solver 6e-3 rad/s, rounding) and omega_max exactly; a Simulation
+// refuses it with a message instead of running into NaN (D_f = 0, ramp time inf).
+TEST(Modal, OneModuleIsAMechanismAndIsRefused) {
+    Material m;
+    const Lattice lat = buildCubicLattice(1, 1, 1, 0.02, m);
+    const Constraints con = cubeTestConstraints(lat, LoadingParams{});
+    const Frequencies f = latticeFrequencies(lat, con.mask);
+    const Reduced r = reduce(lat, con.mask);
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(r.A, Eigen::EigenvaluesOnly);
+    const double lmax = es.eigenvalues().maxCoeff();
+    EXPECT_EQ(r.A.rows(), 11);
+    EXPECT_LT(es.eigenvalues()(0), 1e-12 * lmax);
+    EXPECT_LT(f.omega1, 1e-6 * f.omegaMax);
+    EXPECT_NEAR(f.omegaMax, std::sqrt(lmax), 1e-9 * std::sqrt(lmax));
+    EXPECT_LE(f.iterations, 11);
+    try {
+        Simulation sim(1, 1, 1, 0.02, m, LoadingParams{}, RunParams{});
+        ADD_FAILURE() << "a mechanism was accepted";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("mechanism"), std::string::npos) << e.what();
+    }
+    // Held laterally at the top, the same module is stable and runs.
+    LoadingParams held;
+    held.topLateralFree = false;
+    Simulation sim(1, 1, 1, 0.02, m, held, RunParams{});
+    EXPECT_GT(sim.frequencies().omega1, 0.1 * sim.frequencies().omegaMax);
+}
 // Clamped bottom (default): omega_1 is a lateral sway, 0.81 x sqrt(R_sway).
 TEST(Modal, LanczosAgainstDenseRayleighAndGershgorin3) { checkFrequencies(3, false); }
 // Bottom on rollers: omega_1 (7.9e3 rad/s on 4^3) is not a deformation mode
