@@ -66,9 +66,10 @@ inline double storedEnergy(double eps, double kappa, double EA, double epsP, dou
 //   D = 1/2 L EA eps_p eps_r (kappa - eps_p) / (eps_r - eps_p),   eps_p < kappa < eps_r
 //   D = 1/2 L EA eps_p eps_r = A_f G_f,                         kappa >= eps_r
 // A clamped bar (eps_r = eps_p) loses its whole 1/2 L EA eps_p^2 at once.
+inline double ruptureEnergy(double EA, double epsP, double epsR, double L) { return 0.5 * L * EA * epsP * epsR; }
 inline double dissipatedEnergy(double kappa, double EA, double epsP, double epsR, double L) {
     if (kappa <= epsP) return 0.0;
-    const double full = 0.5 * L * EA * epsP * epsR;
+    const double full = ruptureEnergy(EA, epsP, epsR, L);
     if (kappa >= epsR) return full;
     return full * (kappa - epsP) / (epsR - epsP);
 }

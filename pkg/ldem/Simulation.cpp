@@ -110,7 +110,7 @@ std::vector<double> Simulation::ruptureEnergies() const {
     std::vector<double> e(lat_.numBars());
     forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
         const BarFamily& fam = lat_.families[row.family];
-        e[b] = dissipatedEnergy(bars_.epsR[b], fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b], fam.L);
+        e[b] = ruptureEnergy(fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b], fam.L);
     });
     return e;
 }

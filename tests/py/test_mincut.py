@@ -19,8 +19,8 @@ except ImportError:  # not staged in build/python until the next build: the sour
     _spec.loader.exec_module(_mincut)
     cheapest_cut = _mincut.cheapest_cut
 
-# threads=1: building a 1-module cube runs 20000 Lanczos iterations, which
-# take minutes instead of 0.3 s when several threads contend for busy cores.
+# threads=1: building a Simulation with several threads on busy cores is slow
+# (seconds) for no gain on these tiny lattices.
 
 
 def graph(sim):
@@ -49,7 +49,10 @@ def assert_within_bound(cut, exact, n1, n2, e, top):
     assert exact - len(e) * unit <= cut <= exact * (1 + 1e-12)
 
 
-@pytest.mark.parametrize("kw", [dict(size=0.02), dict(size=0.02, Gf_cv=0), dict(size=0.04),
+# One module needs its upper face held laterally (free, it is a mechanism and
+# refused); the cut does not depend on the lateral freedom.
+@pytest.mark.parametrize("kw", [dict(size=0.02, top_lateral="fixed"), dict(size=0.02, Gf_cv=0, top_lateral="fixed"),
+                                dict(size=0.04),
                                 dict(size=0.04, seed=2), dict(size=0.04, Gf_cv=0)])
 def test_equals_brute_force_on_small_cubes(kw):
     sim = ldem.CubeTest(L0=0.02, threads=1, **kw).simulation()

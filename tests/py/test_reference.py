@@ -34,7 +34,7 @@ Tolerances (machine epsilon eps = 2.2e-16), and what was measured:
 - Energy unit: the elastic energy of the specimen at the critical strain
   (1/2 E eps_p^2 V), or the external work once larger; stress unit: E eps_p.
 
-Found: Simulation.rupture_energy is 0 for clamped bars (test_rupture_energy_of_clamped_bars, xfail).
+Found: Simulation.rupture_energy was 0 for clamped bars (test_rupture_energy_of_clamped_bars; fixed).
 """
 import math
 import os
@@ -345,10 +345,8 @@ def test_limit_strains_clamping_rupture_energy(cv):
     assert np.allclose(R.dissipated_energy(er * 1.5, lat.EA, mat.eps_p, er, lat.L), rupture, rtol=1e-13)
 
 
-@pytest.mark.xfail(strict=True, reason="DISAGREEMENT: Simulation.rupture_energy is 0 for every clamped bar "
-                   "(eps_r < eps_p made eps_p); its docstring, the spec's perfectly brittle triangle and the "
-                   "engine's own fracture energy in measure() give 1/2 L EA eps_p^2 (e.g. 2.50047e-4 J for a "
-                   "diagonal, 5.5566e-5 J for a specimen-edge bar)")
+# Found by this reference: rupture_energy was 0 for every clamped bar (fixed:
+# HillerborgLaw.hpp ruptureEnergy), which weakened the cheapest-cut bound.
 def test_rupture_energy_of_clamped_bars():
     p = Pair(4, 4, 4, seed=5, cv=1.0)
     s, lat, mat = p.sim, p.lat, p.mat
