@@ -35,7 +35,7 @@ def add_cube_options(p: argparse.ArgumentParser, skip=()) -> None:
         kw = {"choices": md["choices"]} if "choices" in md else {}
         p.add_argument(_option(f.name), dest=f.name, type=type(f.default), default=f.default,
                        metavar=f.name.upper() if not kw else None,
-                       help=f"{md['help']}{unit} (default: {f.default})", **kw)
+                       help=f"{md['help']}{unit}", **kw)  # the parser's formatter adds (default: ...)
 
 
 def cube_from_args(args) -> "CubeTest":
