@@ -191,8 +191,8 @@ def write_report(out, tests, table, fits, figs) -> None:
                             + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
                             + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
                               f"{p.get('loss_speedup', 1):g} times"],
-              ["stop", f"{p.get('stop_at', 'load_loss')} (separation: no chain of intact bars joins the faces), "
-                       f"or mean strain {p['final_strain']:g}"],
+              ["stop", ("separation (no chain of intact bars joins the faces)" if p.get("stop_at") == "separation"
+                        else "load loss") + f", or mean strain {p['final_strain']:g}"],
               ["threads per case", str(first["threads"])],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]
