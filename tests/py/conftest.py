@@ -2,6 +2,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 ROOT = os.environ.get("LDEM_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
@@ -68,3 +69,23 @@ def run_cli(*args, cwd=None, timeout=600):
 @pytest.fixture
 def cli():
     return run_cli
+
+
+def picture(path, min_side=300):
+    """A PNG written by ldem, as an RGB array: readable, of a figure's size and not blank."""
+    import matplotlib.image
+
+    img = matplotlib.image.imread(str(path))
+    assert img.ndim == 3 and img.shape[2] in (3, 4), (path, img.shape)
+    assert min(img.shape[:2]) >= min_side, (path, img.shape)
+    rgb = img[:, :, :3]
+    assert len(np.unique(rgb.reshape(-1, 3), axis=0)) > 10, f"{path}: blank picture"
+    return rgb
+
+
+def colour_share(rgb, colour, tol=0.15):
+    """Fraction of the pixels within tol of colour (matplotlib's name or RGB)."""
+    import matplotlib.colors
+
+    want = np.array(matplotlib.colors.to_rgb(colour))
+    return float(np.mean(np.all(np.abs(rgb - want) <= tol, axis=2)))
