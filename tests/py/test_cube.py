@@ -66,12 +66,18 @@ def test_instability_stops_with_step_and_keeps_rows(tmp_path):
     test = ldem.CubeTest(**FAST)
     sim = test.simulation()
     sim.force_time_step(2.5 / sim.omega_max)  # above 2/omega_max: central differences diverge
-    with pytest.raises(ldem.InstabilityError, match=r"numerical instability at step \d+"):
+    with pytest.raises(ldem.InstabilityError, match=r"numerical instability at step \d+") as err:
         test.run(out=str(tmp_path), simulation=sim)
-    rows = (tmp_path / "curve.csv").read_text().splitlines()
-    assert len(rows) >= 2  # header and the records before the blow-up
+    failed_step = int(str(err.value).split("at step ")[1].split()[0])
+    # The records before the blow-up, complete and finite, every record_every steps
+    # from 0; the failing record (the next one) is never written.
+    rows = np.loadtxt(tmp_path / "curve.csv", delimiter=",", skiprows=1, ndmin=2)
+    assert rows.shape[1] == len(ldem.CURVE_COLUMNS) and np.isfinite(rows).all()
+    assert np.array_equal(rows[:, 0], sim.record_every * np.arange(len(rows)))
+    assert failed_step == rows[-1, 0] + sim.record_every
     s = json.loads((tmp_path / "summary.json").read_text())
-    assert s["status"] == "failed" and "numerical instability" in s["error"]
+    assert s["status"] == "failed" and f"numerical instability at step {failed_step}" in s["error"]
+    assert s["peak_stress_MPa"] == pytest.approx(rows[:, 3].max(), rel=1e-9)
 
 
 def test_observer_sees_every_record_and_can_stop():

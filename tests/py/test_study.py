@@ -6,7 +6,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import FAST
+from conftest import FAST, colour_share, picture
 from ldem import study
 from ldem.cube import CubeTest
 
@@ -113,11 +113,25 @@ def test_size_effect_command_tables_and_report(tmp_path, cli):
     assert row["U_ratio_mean"] == pytest.approx(np.mean(separated), rel=1e-5)
     assert all(c["U_ratio"] == "" for c in cases if c["separated"] not in (True, "True"))
     assert all(c["energy_balance_error"] < 0.01 for c in cases)
+    # The fit of each load whose both sizes have separated specimens, through the
+    # mean U_num of summary.csv (written to 6 digits); none for the others.
     fits = json.load(open(os.path.join(out, "fractal.json")))
-    assert "uniform" in fits  # triangular only if both sizes separated by the final strain
-    for name in ("report.md", "fractal.png", "cracks_uniform.png", "curves_triangular.png",
-                 "mean_curves_uniform.png", "fracture_energy_triangular.png"):
-        assert os.path.getsize(os.path.join(out, name)) > 0, name
+    for load in ("uniform", "triangular"):
+        rows = sorted((s for s in summary if s["load"] == load), key=lambda s: s["size_m"])
+        if any(s["U_num_J_mean"] == "" for s in rows):
+            assert load not in fits, load
+            continue
+        want = study.fit_fractal([s["size_m"] for s in rows], [s["U_num_J_mean"] for s in rows])
+        assert set(fits[load]) == set(want)
+        assert fits[load]["U_b0_J"] == pytest.approx(rows[1]["U_num_J_mean"], rel=1e-5)
+        assert fits[load]["d"] == pytest.approx(want["d"], abs=1e-4)
+        assert fits[load]["d_specific"] == pytest.approx(fits[load]["d"] - 2, abs=1e-12)
+        assert fits[load]["rms_log_residual"] < 1e-12  # two sizes: the line goes through both
+    assert "uniform" in fits
+    for name in ("fractal.png", "curves_triangular.png", "mean_curves_uniform.png", "fracture_energy_triangular.png"):
+        picture(os.path.join(out, name))
+    cracks = picture(os.path.join(out, "cracks_uniform.png"))
+    assert colour_share(cracks, "red") > 1e-4 and colour_share(cracks, "cyan") > 1e-4
     assert "| 0.12 | 2 |" in open(os.path.join(out, "report.md")).read()
 
 
