@@ -31,14 +31,18 @@ def test_fractal_fit_recovers_known_exponent():
 def test_mean_cv_and_aggregation():
     rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": 1e-4 * p,
              "edge_strain_at_peak": 1e-4 * p, "separated": True, "U_num_J": u, "U_min_J": 1.44, "U_ratio": u / 1.44,
-             "U_loss_ratio": 0.5, "U_mincut_ratio": 0.7, "energy_error": False, "wall_s": 1.0}
+             "U_loss_ratio": 0.5, "U_mincut_ratio": 0.7, "energy_error": False, "wall_s": 1.0,
+             "separation_strain": 0.01 * p}
             for p, u in ((2.0, 1.0), (3.0, 2.0), (4.0, 3.0))]
     # A fourth specimen that did not separate: in the peak means, not in U_num's.
-    rows.append(dict(rows[0], peak_stress_MPa=3.0, separated=False, U_num_J="", U_ratio="", energy_error=True))
+    rows.append(dict(rows[0], peak_stress_MPa=3.0, separated=False, U_num_J="", U_ratio="", energy_error=True,
+                     separation_strain=""))
     (r,) = study.aggregate(rows[:3], c_a=0.1385)
     (r4,) = study.aggregate(rows, c_a=0.1385)
     assert (r4["seeds"], r4["separated"], r4["energy_errors"]) == (4, 3, 1)
     assert r4["U_ratio_mean"] == r["U_ratio_mean"] and r4["peak_stress_MPa_mean"] == pytest.approx(3.0)
+    assert r4["separation_strain_mean"] == r["separation_strain_mean"] == pytest.approx(0.03)  # separated ones
+    assert r4["U_num_J_mean"] == r["U_num_J_mean"] == pytest.approx(2.0)
     assert r["seeds"] == 3
     assert r["peak_stress_MPa_mean"] == pytest.approx(3.0)
     assert r["peak_stress_MPa_cv"] == pytest.approx(1.0 / 3.0)  # sample std 1 over mean 3
@@ -58,7 +62,8 @@ def test_peak_of_the_mean_curve():
     assert strain == pytest.approx(3e-4, rel=1e-3)
     rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": e, "edge_strain_at_peak": e,
              "separated": True, "U_num_J": 1.0, "U_min_J": 1.44, "U_ratio": 1 / 1.44, "U_loss_ratio": 0.5,
-             "U_mincut_ratio": 0.6, "energy_error": False, "wall_s": 1.0} for p, e in ((1.0, 1e-4), (3.0, 3e-4))]
+             "U_mincut_ratio": 0.6, "energy_error": False, "wall_s": 1.0, "separation_strain": 1e-2}
+            for p, e in ((1.0, 1e-4), (3.0, 3e-4))]
     (r,) = study.aggregate(rows, c_a=0.1385, curves={("uniform", 0.12): [a, b]})
     assert (r["peak_stress_MPa_mean"], r["strain_at_peak_mean"]) == (pytest.approx(2.0), pytest.approx(2e-4))
     assert (r["mean_curve_peak_MPa"], r["mean_curve_strain_at_peak"]) == (peak, strain)
