@@ -1,0 +1,457 @@
+#!/usr/bin/python3
+"""Mutation checks: does the test suite notice small wrong changes of ldem?
+
+For each mutation of tests/mutation/mutations.toml (a file, a sed expression,
+a one-line description) this script
+
+  1. resets a scratch copy of the repository's committed tree (HEAD) to its
+     pristine state (the copy is a git repository of its own: reset --hard,
+     clean),
+  2. applies the mutation there with `sed -i` and checks that it changed the
+     expected number of lines,
+  3. builds incrementally in a scratch build tree configured once (only the
+     changed files recompile; the LTO link of _core and ldem_tests still takes
+     a while),
+  4. runs the suite, failing fast: the GoogleTest binary with
+     --gtest_fail_fast, then `pytest -x -q tests/py` on the scratch build
+     (PYTHONPATH / LDEM_BUILD_PYTHON = the scratch build's python folder,
+     LDEM_SOURCE_DIR = the scratch source),
+
+and records "caught" (with the first failing test), "NOT CAUGHT" (the whole
+suite passed) or "did not build", with the times. The repository's working
+tree is never touched: only the scratch copy (default /tmp/ldem-mut) is.
+
+Before the mutations, the unmutated scratch copy is built and the whole suite
+is run once (the baseline): if it fails, nothing a mutation does can be
+read, and the script stops. A full sweep writes its table to
+tests/mutation/last_run.md.
+
+    nice -n 19 /usr/bin/python3 tests/mutation/run.py           # everything (an hour or more)
+    /usr/bin/python3 tests/mutation/run.py --list               # the mutations
+    /usr/bin/python3 tests/mutation/run.py --check              # each applies and changes its file (no build)
+    /usr/bin/python3 tests/mutation/run.py --only c_a_0_1358 --no-baseline
+"""
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import platform
+import re
+import subprocess
+import sys
+import tarfile
+import io
+import json
+import time
+import tomllib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+REPO = os.path.dirname(os.path.dirname(HERE))
+MANIFEST = os.path.join(HERE, "mutations.toml")
+LAST_RUN = os.path.join(HERE, "last_run.md")
+PYTHON = "/usr/bin/python3"
+
+# OpenMP threads that wait at a barrier sleep instead of spinning: on a busy
+# machine (this sweep runs under nice beside other jobs) spinning threads slow
+# a two-thread run many times over (test_cli.py saw 159 s on two threads against
+# 21 s on one). Results do not depend on it, nor on the thread count.
+TEST_ENV = dict(os.environ, OMP_WAIT_POLICY=os.environ.get("OMP_WAIT_POLICY", "passive"))
+
+CAUGHT, NOT_CAUGHT, NO_BUILD, NOT_APPLIED = "caught", "NOT CAUGHT", "did not build", "did not apply"
+
+
+# -- the manifest -------------------------------------------------------------------
+def load_mutations(path=MANIFEST):
+    with open(path, "rb") as f:
+        muts = tomllib.load(f)["mutation"]
+    names = set()
+    for m in muts:
+        for key in ("name", "file", "sed", "description"):
+            if key not in m:
+                sys.exit(f"{path}: a mutation has no {key}: {m}")
+        if m["name"] in names:
+            sys.exit(f"{path}: two mutations named {m['name']}")
+        names.add(m["name"])
+        m.setdefault("lines", 1)
+    return muts
+
+
+# -- helpers ------------------------------------------------------------------------
+def sh(cmd, cwd=None, env=None, log=None, timeout=None, check=True):
+    """Runs cmd; its output goes to log (a path) if given, else is returned."""
+    out = open(log, "a") if log else subprocess.PIPE
+    try:
+        r = subprocess.run(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT, text=True,
+                           timeout=timeout)
+    finally:
+        if log:
+            out.close()
+    if check and r.returncode != 0:
+        detail = "" if log else r.stdout[-3000:]
+        raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}){': ' + detail if detail else ''}"
+                           + (f"; see {log}" if log else ""))
+    return r
+
+
+def git(src, *args, check=True):
+    return sh(["git", "-C", src, "-c", "user.name=ldem-mut", "-c", "user.email=ldem-mut@localhost", *args],
+              check=check)
+
+
+def fmt_s(s):
+    return f"{s:.0f} s" if s < 600 else f"{s / 60:.1f} min"
+
+
+# -- the scratch copy ---------------------------------------------------------------
+class Scratch:
+    """A copy of the repository's HEAD in <root>/src (a git repository of its own,
+    so it can be reset), built in <root>/build, logs in <root>/logs."""
+
+    def __init__(self, root, jobs):
+        self.root, self.jobs = root, jobs
+        self.src, self.build, self.logs = (os.path.join(root, d) for d in ("src", "build", "logs"))
+
+    def prepare(self):
+        """Brings src to the repository's HEAD, touching only files that differ
+        (so an existing build stays incremental), and commits it as the pristine state."""
+        os.makedirs(self.logs, exist_ok=True)
+        head = sh(["git", "-C", REPO, "rev-parse", "HEAD"]).stdout.strip()
+        archive = subprocess.run(["git", "-C", REPO, "archive", "--format=tar", "HEAD"], check=True,
+                                 stdout=subprocess.PIPE).stdout
+        wanted = {}
+        with tarfile.open(fileobj=io.BytesIO(archive)) as tar:
+            for member in tar.getmembers():
+                if member.isfile():
+                    wanted[member.name] = (tar.extractfile(member).read(), member.mode)
+                elif member.issym():
+                    wanted[member.name] = (member.linkname, "link")
+        fresh = not os.path.isdir(os.path.join(self.src, ".git"))
+        os.makedirs(self.src, exist_ok=True)
+        if fresh:
+            git(self.src, "init", "-q")
+        else:
+            self.reset()
+        for dirpath, dirnames, filenames in os.walk(self.src):
+            if dirpath == self.src and ".git" in dirnames:
+                dirnames.remove(".git")
+            for name in filenames:
+                rel = os.path.relpath(os.path.join(dirpath, name), self.src)
+                if rel not in wanted:
+                    os.remove(os.path.join(self.src, rel))
+        changed = 0
+        for rel, (data, mode) in wanted.items():
+            path = os.path.join(self.src, rel)
+            os.makedirs(os.path.dirname(path), exist_ok=True)
+            if mode == "link":
+                if not (os.path.islink(path) and os.readlink(path) == data):
+                    if os.path.lexists(path):
+                        os.remove(path)
+                    os.symlink(data, path)
+                    changed += 1
+                continue
+            if os.path.isfile(path) and not os.path.islink(path):
+                with open(path, "rb") as f:
+                    if f.read() == data:
+                        continue
+            with open(path, "wb") as f:  # a new mtime: ninja rebuilds what depends on it
+                f.write(data)
+            os.chmod(path, mode & 0o777)
+            changed += 1
+        git(self.src, "add", "-A")
+        if git(self.src, "status", "--porcelain").stdout.strip():
+            git(self.src, "commit", "-q", "-m", f"pristine: {head}")
+        return head, changed
+
+    def reset(self):
+        git(self.src, "reset", "-q", "--hard")
+        git(self.src, "clean", "-q", "-f", "-d", "-x")
+
+    def configure(self):
+        if os.path.isfile(os.path.join(self.build, "build.ninja")):
+            return
+        sh(["cmake", "-S", self.src, "-B", self.build, "-G", "Ninja", "-DCMAKE_BUILD_TYPE=Release",
+            f"-DPython_EXECUTABLE={PYTHON}"], log=os.path.join(self.logs, "configure.log"))
+
+    def apply(self, m):
+        """Applies mutation m; returns None, or why it did not apply."""
+        path = os.path.join(self.src, m["file"])
+        if not os.path.isfile(path):
+            return f"no file {m['file']}"
+        r = sh(["sed", "-i", "-e", m["sed"], path], check=False)
+        if r.returncode != 0:
+            return f"sed failed: {r.stdout.strip()}"
+        diff = git(self.src, "diff", "--numstat", "--", m["file"]).stdout.split()
+        changed = int(diff[0]) if diff else 0
+        if changed != m["lines"]:
+            return f"changed {changed} lines, expected {m['lines']}"
+        return None
+
+    def diff(self):
+        return git(self.src, "diff", "-U0").stdout
+
+    def build_all(self, log):
+        """Incremental build; True if it succeeded."""
+        targets = ["cmake", "--build", self.build]
+        if self.jobs:
+            targets += ["-j", str(self.jobs)]
+        return sh(targets, log=log, check=False).returncode == 0
+
+    # -- the suite, failing fast --------------------------------------------------------
+    def gtest(self, log, timeout, skip=(), fail_fast=True):
+        """[] if every GoogleTest passed, else the failing tests (the first only when
+        failing fast), or what went wrong. skip: tests not to run."""
+        cmd = [os.path.join(self.build, "tests", "ldem_tests"), "--gtest_color=no"]
+        if fail_fast:
+            cmd.append("--gtest_fail_fast")
+        if skip:
+            cmd.append("--gtest_filter=-" + ":".join(skip))
+        try:
+            r = sh(cmd, cwd=os.path.join(self.build, "tests"), env=TEST_ENV, log=log, timeout=timeout,
+                   check=False)
+        except subprocess.TimeoutExpired:
+            return [f"{last_match(log, RUN_RE) or '?'} (timed out after {timeout} s)"]
+        if r.returncode == 0:
+            return []
+        failed = all_matches(log, GTEST_FAILED_RE)
+        return failed or [f"{last_match(log, RUN_RE) or '?'} (exit {r.returncode}: crashed)"]
+
+    def pytest(self, log, timeout, skip=(), fail_fast=True):
+        """[] if every pytest test passed, else the failing tests (node ids under tests/py)."""
+        py = os.path.join(self.build, "python")
+        env = dict(TEST_ENV, PYTHONPATH=py, LDEM_BUILD_PYTHON=py, LDEM_SOURCE_DIR=self.src,
+                   PYTHONDONTWRITEBYTECODE="1")
+        cmd = [PYTHON, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rfE", "tests/py"]
+        if fail_fast:
+            cmd.insert(3, "-x")
+        for test in skip:
+            cmd += ["--deselect", "tests/py/" + test]
+        try:
+            r = sh(cmd, cwd=self.src, env=env, log=log, timeout=timeout, check=False)
+        except subprocess.TimeoutExpired:
+            return [f"timed out after {timeout} s (last: {last_match(log, PYTEST_FILE_RE) or '?'})"]
+        if r.returncode == 0:
+            return []
+        return all_matches(log, PYTEST_FAILED_RE) or [f"exit {r.returncode} (see log)"]
+
+
+GTEST_FAILED_RE = re.compile(r"^\[  FAILED  \] (\w+\.\w+)")
+RUN_RE = re.compile(r"^\[ RUN      \] (\S+)")
+PYTEST_FAILED_RE = re.compile(r"^(?:FAILED|ERROR) (?:tests/py/)?(.+?)(?: - .*)?$")
+PYTEST_FILE_RE = re.compile(r"^(tests/py/\S+\.py) ")
+
+
+def all_matches(path, regex):
+    """Every first group of regex in the file, once each, in order."""
+    found = []
+    with open(path, errors="replace") as f:
+        for line in f:
+            m = regex.match(line.rstrip("\n"))
+            if m and m.group(1) not in found:
+                found.append(m.group(1))
+    return found
+
+
+def last_match(path, regex):
+    found = None
+    with open(path, errors="replace") as f:
+        for line in f:
+            m = regex.match(line)
+            if m:
+                found = m.group(1)
+    return found
+
+
+def run_suite(scratch, tag, timeout, skip=None, fail_fast=True):
+    """Runs GoogleTest then pytest. Failing fast: (first failure or None, seconds);
+    else (every failure as {"gtest": [...], "pytest": [...]}, seconds).
+    skip: {"gtest": [...], "pytest": [...]}, tests left out (they fail unmutated)."""
+    skip = skip or {}
+    t = time.monotonic()
+    failures = {}
+    for stage in ("gtest", "pytest"):
+        log = os.path.join(scratch.logs, f"{tag}.{stage}.log")
+        if os.path.exists(log):
+            os.remove(log)
+        failures[stage] = getattr(scratch, stage)(log, timeout, skip.get(stage, ()), fail_fast)
+        if fail_fast and failures[stage]:
+            return f"{stage}: {failures[stage][0]}", time.monotonic() - t
+    return (None if fail_fast else failures), time.monotonic() - t
+
+
+# -- one mutation ---------------------------------------------------------------------
+def run_one(scratch, m, timeout, skip=None):
+    res = {"name": m["name"], "file": m["file"], "description": m["description"], "first_failure": "",
+           "build_s": 0.0, "test_s": 0.0}
+    scratch.reset()
+    why = scratch.apply(m)
+    if why:
+        res.update(result=NOT_APPLIED, first_failure=why)
+        scratch.reset()
+        return res
+    with open(os.path.join(scratch.logs, f"{m['name']}.diff"), "w") as f:
+        f.write(scratch.diff())
+    blog = os.path.join(scratch.logs, f"{m['name']}.build.log")
+    if os.path.exists(blog):
+        os.remove(blog)
+    t = time.monotonic()
+    built = scratch.build_all(blog)
+    res["build_s"] = time.monotonic() - t
+    if not built:
+        res.update(result=NO_BUILD, first_failure=f"see {blog}")
+    else:
+        failed, res["test_s"] = run_suite(scratch, m["name"], timeout, skip)
+        res.update(result=CAUGHT if failed else NOT_CAUGHT, first_failure=failed or "")
+    scratch.reset()  # the next build also undoes this mutation
+    return res
+
+
+# -- the report -----------------------------------------------------------------------
+def table(results):
+    rows = ["| # | mutation | file | result | first failing test | build | tests |",
+            "|---|---|---|---|---|---|---|"]
+    for i, r in enumerate(results, 1):
+        result = f"**{r['result']}**" if r["result"] != CAUGHT else r["result"]
+        failure = r["first_failure"].replace("|", "\\|")
+        rows.append(f"| {i} | `{r['name']}` | `{r['file']}` | {result} | {failure} | {fmt_s(r['build_s'])} | "
+                    f"{fmt_s(r['test_s'])} |")
+    return "\n".join(rows)
+
+
+def report(results, head, wall, baseline, skip, argv):
+    counts = {k: sum(r["result"] == k for r in results) for k in (CAUGHT, NOT_CAUGHT, NO_BUILD, NOT_APPLIED)}
+    lines = [
+        "# Mutation checks: last run",
+        "",
+        f"Written by `tests/mutation/run.py` ({' '.join(argv) or 'no options'}) on "
+        f"{datetime.datetime.now().strftime('%Y-%m-%d %H:%M')}, {platform.node()} "
+        f"({os.cpu_count()} cores), on commit `{head[:12]}`.",
+        f"Mutations: {len(results)}; caught {counts[CAUGHT]}, not caught {counts[NOT_CAUGHT]}, "
+        f"did not build {counts[NO_BUILD]}, did not apply {counts[NOT_APPLIED]}. "
+        f"Wall time {fmt_s(wall)}" + (f" (the unmutated suite: {baseline})." if baseline else "."),
+        "",
+        "Each mutation is applied alone to a scratch copy of the commit, built, and the suite run failing fast "
+        "(GoogleTest with `--gtest_fail_fast`, then `pytest -x -q tests/py`); \"first failing test\" is the "
+        "first test that failed, \"build\" and \"tests\" the times of the incremental build and of the suite "
+        "up to that failure (the whole suite for a mutation not caught).",
+        "",
+        table(results),
+        "",
+    ]
+    if skip:
+        lines += ["Tests that FAIL ON THE UNMUTATED COMMIT, left out of every mutation's run (a mutation "
+                  "they alone would catch counts as not caught):", ""]
+        lines += [f"- {stage}: `{t}`" for stage, tests in skip.items() for t in tests]
+        lines += [""]
+    elif baseline is None:
+        lines += ["The unmutated suite was not run (--no-baseline).", ""]
+    lines += [
+        "Descriptions (tests/mutation/mutations.toml):",
+        "",
+    ]
+    lines += [f"- `{r['name']}`: {r['description']}" for r in results]
+    missed = [r for r in results if r["result"] != CAUGHT]
+    if missed:
+        lines += ["", "Not caught, did not build or did not apply:", ""]
+        lines += [f"- `{r['name']}` ({r['result']}): {r['description']}" for r in missed]
+    return "\n".join(lines) + "\n"
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="Mutation checks of the ldem test suite (not part of CI).")
+    ap.add_argument("--list", action="store_true", help="list the mutations and exit")
+    ap.add_argument("--check", action="store_true",
+                    help="apply each mutation to the scratch copy and check it changes its file (no build)")
+    ap.add_argument("--only", action="append", metavar="NAME", help="run only this mutation (repeatable)")
+    ap.add_argument("--no-baseline", action="store_true", help="skip the run of the unmutated suite")
+    ap.add_argument("--strict-baseline", action="store_true",
+                    help="stop if the unmutated suite fails (default: leave its failing tests out and say so)")
+    ap.add_argument("--scratch", default="/tmp/ldem-mut", help="scratch folder (default /tmp/ldem-mut)")
+    ap.add_argument("--jobs", type=int, default=2, help="build jobs (default 2)")
+    ap.add_argument("--timeout", type=int, default=3600, help="seconds per test stage before it counts as failed")
+    ap.add_argument("--out", help="where to write the table (default: tests/mutation/last_run.md for a full "
+                                  "sweep, <scratch>/last_run.md with --only)")
+    args = ap.parse_args(argv)
+    argv = sys.argv[1:] if argv is None else argv
+
+    muts = load_mutations()
+    if args.list:
+        w = max(len(m["name"]) for m in muts)
+        for m in muts:
+            print(f"{m['name']:<{w}}  {m['file']}\n{'':<{w}}  {m['description']}")
+        return 0
+    if args.only:
+        unknown = set(args.only) - {m["name"] for m in muts}
+        if unknown:
+            sys.exit(f"unknown mutation(s): {', '.join(sorted(unknown))} (see --list)")
+        muts = [m for m in muts if m["name"] in args.only]
+
+    scratch = Scratch(args.scratch, args.jobs)
+    head, changed = scratch.prepare()
+    print(f"scratch copy of {head[:12]} in {scratch.src} ({changed} files updated)", flush=True)
+    if args.check:
+        bad = 0
+        for m in muts:
+            scratch.reset()
+            why = scratch.apply(m)
+            bad += why is not None
+            print(f"{'ok' if why is None else 'FAILS'}  {m['name']}" + (f": {why}" if why else ""))
+            if why is None:
+                print("    " + "\n    ".join(l for l in scratch.diff().splitlines() if l[:1] in "+-"
+                                             and not l.startswith(("+++", "---"))))
+        scratch.reset()
+        return 1 if bad else 0
+
+    t0 = time.monotonic()
+    scratch.reset()
+    scratch.configure()
+    print("building the unmutated copy ...", flush=True)
+    if not scratch.build_all(os.path.join(scratch.logs, "baseline.build.log")):
+        sys.exit(f"the unmutated copy does not build: see {scratch.logs}/baseline.build.log")
+    baseline, skip = None, {}
+    cache = os.path.join(scratch.root, "baseline.json")
+    if args.no_baseline and os.path.isfile(cache):
+        with open(cache) as f:
+            known = json.load(f)
+        if known["head"] == head:  # the last baseline of this very commit
+            baseline, skip = known["baseline"] + " (an earlier run, same commit)", known["skip"]
+            if skip:
+                print(f"  failing unmutated (an earlier baseline of this commit), left out: {skip}", flush=True)
+    if not args.no_baseline:
+        print("running the unmutated suite (all of it) ...", flush=True)
+        failures, secs = run_suite(scratch, "baseline", args.timeout, fail_fast=False)
+        skip = {k: v for k, v in failures.items() if v}
+        baseline = f"{'passes' if not skip else 'fails'} in {fmt_s(secs)}"
+        print(f"  baseline {baseline}", flush=True)
+        if skip:
+            listed = "; ".join(f"{k}: {', '.join(v)}" for k, v in skip.items())
+            if args.strict_baseline:
+                sys.exit(f"the unmutated suite fails ({listed}; logs in {scratch.logs}): fix that first")
+            print(f"  FAILING UNMUTATED, left out of every mutation's run: {listed}", flush=True)
+        with open(cache, "w") as f:
+            json.dump({"head": head, "baseline": baseline, "skip": skip}, f)
+
+    results = []
+    for i, m in enumerate(muts, 1):
+        print(f"[{i}/{len(muts)}] {m['name']}: {m['description']}", flush=True)
+        r = run_one(scratch, m, args.timeout, skip)
+        results.append(r)
+        print(f"    {r['result']}" + (f": {r['first_failure']}" if r["first_failure"] else "") +
+              f" (build {fmt_s(r['build_s'])}, tests {fmt_s(r['test_s'])})", flush=True)
+    wall = time.monotonic() - t0
+
+    text = report(results, head, wall, baseline, skip, argv)
+    print()
+    print(table(results))
+    print(f"\nwall time {fmt_s(wall)}")
+    out = args.out or (os.path.join(scratch.root, "last_run.md") if args.only else LAST_RUN)
+    with open(out, "w") as f:
+        f.write(text)
+    print(f"written to {out}")
+    # Leave the build matching the pristine source (nothing half-mutated).
+    scratch.reset()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
