@@ -221,6 +221,10 @@ class Scratch:
         py = os.path.join(self.build, "python")
         env = dict(TEST_ENV, PYTHONPATH=py, LDEM_BUILD_PYTHON=py, LDEM_SOURCE_DIR=self.src,
                    PYTHONDONTWRITEBYTECODE="1")
+        # The spec lives beside the repository (../shared), not beside the scratch copy.
+        spec = os.path.realpath(os.path.join(REPO, "..", "shared", "LDEM_SPEC.md"))
+        if "LDEM_SPEC" not in env and os.path.isfile(spec):
+            env["LDEM_SPEC"] = spec
         cmd = [PYTHON, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rfE", "tests/py"]
         if fail_fast:
             cmd.insert(3, "-x")
