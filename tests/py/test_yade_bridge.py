@@ -43,7 +43,8 @@ def test_one_bar_law_matches_ldem(yade, tmp_path):
 
 # The reference's own run of the cross-check's specimen (tests/reference/ldem_ref.py: Reference on the 6^3
 # lattice, G_f = 100 N/m everywhere, triangular, 0.1 1/s, dt and D_f from its own eigen-solve; numpy, neither
-# YADE nor ldem; 4210 steps, 20 s, too slow to repeat here): the peak and its mean strain (step 2512), and
+# YADE nor ldem; 4210 steps, 20 s, too slow to repeat here; `tests/reference/reference_run.py --modules 6
+# --load triangular --gf-cv 0 --strain-rate 0.1 --steps 4210`): the peak and its mean strain (step 2512), and
 # at the final strain 2.6e-4 (step 4210) the external work and the broken bars.
 REF_TRIANGULAR_6 = dict(peak_MPa=2.314858695119894, strain_at_peak=1.5013246341428089e-4,
                         external_work_J=0.8143153074281925, broken=45)
