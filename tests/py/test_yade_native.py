@@ -29,12 +29,24 @@ def test_native_cpm_tiny_cube(tmp_path):
                   re.M)
     assert m, text
     peak, strain, particles = float(m.group(1)), float(m.group(2)), int(m.group(3))
-    assert 0.5 < peak < 6.0  # MPa: a tensile strength of concrete
-    assert 2e-5 < strain < 4e-4
-    assert 20 < particles < 200
     s = json.loads((out / "summary.json").read_text())
-    assert s["status"] == "done" and s["peak_stress_MPa"] == pytest.approx(peak, rel=1e-3)
-    assert 30 < s["E_bulk_GPa"] < 40  # calibrated to 35 GPa on the default packing; a smaller cell differs a little
+    assert s["status"] == "done" and s["stop_reason"] == "final_strain"
+    # The printed line is summary.json's, rounded to 5 digits.
+    assert (peak, strain, particles) == (float(f"{s['peak_stress_MPa']:.4f}"), float(f"{s['strain_at_peak']:.4e}"),
+                                         s["particles"])
+    # YADE's own model, not ours: nothing to derive these from, so they are the values measured on this
+    # tiny cube (Debian's YADE 2023.02a, one thread, packing seed 1). The run is deterministic: two runs
+    # gave identical summary.json and curve.csv, bit for bit, so the tolerance only absorbs the last
+    # digits. A change of YADE or of the packing moves them by percents (seeds 2 and 3 change the
+    # 0.12 m peak by -11 % and -18 %, README): then re-measure, and re-calibrate if the default packing moved.
+    measured = dict(peak_stress_MPa=1.9521871620150726, strain_at_peak=1.5673975950084316e-4,
+                    E_initial_GPa=16.370924431401598, E_bulk_GPa=33.49245525989025, nu_bulk=0.19956876195385645,
+                    work_per_face_area_J_m2=24.828083748623815, final_stress_MPa=0.4513462049186185,
+                    gauge_length_m=0.053104695923813214, packing_fraction=0.5659520987800274)
+    for k, v in measured.items():
+        assert s[k] == pytest.approx(v, rel=1e-9), k
+    assert (s["particles"], s["cohesive_contacts"], s["bottom_particles"], s["top_particles"], s["steps"]) == \
+        (57, 232, 7, 7, 7893)
     header = (out / "curve.csv").read_text().splitlines()[0]
     assert header.startswith("mean_strain,stress_MPa")
     # The peak and its strain are the curve's largest row (9 digits in the file).
