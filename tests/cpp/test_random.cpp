@@ -273,43 +273,62 @@ TEST(FractureEnergyField, CorrelationMatchesGaussianFunctionAtSeveralDistances) 
 // Marginal of the correlated field. One realisation of a field with
 // correlation length l_c on a cube of side S holds only about
 // S^3 / (pi^1.5 l_c^3) independent values, so the spatial mean of one
-// specimen is itself random. Take 40 independent seeds and test the grand mean
-// against 4 standard errors estimated from the spread of the 40 specimen means
-// (t-test, 39 d.o.f.); the pooled CV of G_f and the pooled variance of the
-// normal scores must also match the request.
+// specimen is itself random. Take 40 independent seeds and test each statistic
+// against 4.5 standard errors estimated from the spread over the 40 specimens
+// (t-test, 39 d.o.f.): the grand mean of G_f, its pooled CV (jackknife over the
+// specimens), the mean of the normal scores (0) and of their squares (1: the
+// field's variance, uncentred). Measured: G_f mean 99.53 (SE 1.27), CV 0.9928
+// (SE 0.0082), scores -0.0024 (SE 0.0135) and 0.9945 (SE 0.0126); formerly
+// CV and scores were only required within 0.1 of the request. (The marginal
+// itself, the same Weibull quantile, is tested to 4 SE of 200000 iid draws above.)
 TEST(FractureEnergyField, CorrelatedFieldHasRequestedMarginal) {
     Material m;
     m.corrLength = 0.02;
     const Lattice lat = buildCubicLattice(8, 8, 8, 0.02, m);  // 0.16 m: ~90 correlation volumes
     const Weibull w = weibullFromMeanCV(m.GfMean, m.GfCV);
     const int seeds = 40;
-    std::vector<double> specimenMean;
-    double s1 = 0, s2 = 0, z1 = 0, z2 = 0, n = 0;
+    std::vector<double> s1(seeds), s2(seeds), z1(seeds), z2(seeds);
+    double n = 0;
     for (int s = 0; s < seeds; ++s) {
         const auto gf = fractureEnergyField(lat, m, 1000 + s);
-        double sm = 0;
         for (double g : gf) {
-            sm += g, s1 += g, s2 += g * g, n += 1;
+            s1[s] += g, s2[s] += g * g;
             const double z = normalScore(w, g);
-            z1 += z, z2 += z * z;
+            z1[s] += z, z2[s] += z * z;
         }
-        specimenMean.push_back(sm / gf.size());
+        n = double(gf.size());  // bars per specimen
     }
-    double mm = 0, vm = 0;
-    for (double x : specimenMean) mm += x;
-    mm /= seeds;
-    for (double x : specimenMean) vm += (x - mm) * (x - mm);
-    const double se = std::sqrt(vm / (seeds - 1) / seeds);
-    const double poolMean = s1 / n, poolCV = std::sqrt(s2 / n - poolMean * poolMean) / poolMean;
-    const double zMean = z1 / n, zVar = z2 / n - zMean * zMean;
+    auto meanSe = [&](const std::vector<double>& sums) {  // per-specimen means: grand mean and its SE
+        double mean = 0, var = 0;
+        for (double x : sums) mean += x / n;
+        mean /= seeds;
+        for (double x : sums) var += (x / n - mean) * (x / n - mean);
+        return std::pair<double, double>{mean, std::sqrt(var / (seeds - 1) / seeds)};
+    };
+    auto pooledCV = [&](int skip) {
+        double a = 0, b = 0, k = 0;
+        for (int s = 0; s < seeds; ++s)
+            if (s != skip) a += s1[s], b += s2[s], k += n;
+        return std::sqrt(b / k - (a / k) * (a / k)) / (a / k);
+    };
+    const auto [mm, se] = meanSe(s1);
+    const double cv = pooledCV(-1);
+    double jm = 0, jv = 0;
+    for (int s = 0; s < seeds; ++s) jm += pooledCV(s) / seeds;
+    for (int s = 0; s < seeds; ++s) jv += (pooledCV(s) - jm) * (pooledCV(s) - jm);
+    const double cvSe = std::sqrt((seeds - 1.0) / seeds * jv);
+    const auto [zMean, zSe] = meanSe(z1);
+    const auto [z2Mean, z2Se] = meanSe(z2);
     std::printf(
-        "[ field ] l_c = %.3f m, %d seeds: mean G_f = %.2f (SE %.2f), pooled CV = %.3f, "
-        "normal scores mean %.3f var %.3f\n",
-        m.corrLength, seeds, mm, se, poolCV, zMean, zVar);
-    EXPECT_NEAR(mm, m.GfMean, 4 * se);
-    EXPECT_LT(se, 0.05 * m.GfMean);     // the spatial correlation is real but the test keeps its teeth
-    EXPECT_GT(se, 100 / std::sqrt(n));  // and the specimens are correlated: more spread than iid draws
-    EXPECT_NEAR(poolCV, m.GfCV, 0.1);
-    EXPECT_NEAR(zMean, 0.0, 0.1);
-    EXPECT_NEAR(zVar, 1.0, 0.1);
+        "[ field ] l_c = %.3f m, %d seeds: mean G_f = %.2f (SE %.2f), pooled CV = %.4f (SE %.4f), "
+        "normal scores mean %.4f (SE %.4f), mean square %.4f (SE %.4f)\n",
+        m.corrLength, seeds, mm, se, cv, cvSe, zMean, zSe, z2Mean, z2Se);
+    EXPECT_NEAR(mm, m.GfMean, 4.5 * se);
+    EXPECT_LT(se, 0.02 * m.GfMean);         // the spatial correlation is real but the test keeps its teeth
+    EXPECT_GT(se, 100 / std::sqrt(seeds * n));  // and the specimens are correlated: more spread than iid draws
+    EXPECT_NEAR(cv, m.GfCV, 4.5 * cvSe);
+    EXPECT_LT(cvSe, 0.02);
+    EXPECT_NEAR(zMean, 0.0, 4.5 * zSe);
+    EXPECT_NEAR(z2Mean, 1.0, 4.5 * z2Se);
+    EXPECT_LT(z2Se, 0.02);
 }
