@@ -1,0 +1,37 @@
+"""Why the large uniform cubes are weaker (issue 10, item 7).
+
+    /usr/bin/python3 scripts/peak_ablation.py SIZE SEEDS     e.g. 0.48 1,2,3
+
+One factor at a time on a cube (both loads), each run stopped past its peak,
+one JSON line per run: peak, its
+strain, damaged bars at the peak (pre-peak nonlinearity) and where the damage is
+(mean height of the damaged-or-broken bars over H, and the share within one module
+of the lower face)."""
+import json, sys
+import numpy as np
+import ldem
+
+size = float(sys.argv[1]); seeds = [int(s) for s in sys.argv[2].split(",")]
+VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
+            "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9}}
+for load in ("uniform", "triangular"):
+    for name, kw in VARIANTS.items():
+        for seed in seeds:
+            t = ldem.CubeTest(size=size, load=load, seed=seed, threads=2, stop_at="load_loss",
+                              final_strain=3e-4 if load == "uniform" else 2e-4, **kw)
+            r = t.run()
+            s, c = r.summary, r.curve
+            i = int(np.argmin(np.abs(c["mean_strain"] - s["strain_at_peak"])))
+            sim = r.sim
+            bars = sim.lattice.bar_table()
+            z0 = np.asarray(sim.lattice.z0)
+            kappa = np.asarray(sim.kappa)
+            hurt = kappa > sim.eps_p
+            zmid = 0.5 * (z0[bars["n1"]] + z0[bars["n2"]]) / size
+            out = {"load": load, "variant": name, "seed": seed, "peak_MPa": s["peak_stress_MPa"],
+                   "strain_at_peak": s["strain_at_peak"], "damaged_at_peak": int(c["damaged_bars"][i]),
+                   "broken_at_peak": int(c["broken_bars"][i]), "end_strain": float(c["mean_strain"][-1]),
+                   "hurt_mean_height": float(zmid[hurt].mean()) if hurt.any() else None,
+                   "hurt_share_lowest_module": float((zmid[hurt] < 1.0 / t.modules()).mean()) if hurt.any() else None,
+                   "energy_error": s["energy_balance_error"]}
+            print(json.dumps(out), flush=True)
