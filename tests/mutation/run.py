@@ -343,8 +343,8 @@ def report(results, head, wall, baseline, skip, argv):
         "",
     ]
     if skip:
-        lines += ["Tests that FAIL ON THE UNMUTATED COMMIT, left out of every mutation's run (a mutation "
-                  "they alone would catch counts as not caught):", ""]
+        lines += ["Tests left out of every mutation's run (they FAIL ON THE UNMUTATED COMMIT, or --leave-out "
+                  "named them; a mutation they alone would catch counts as not caught):", ""]
         lines += [f"- {stage}: `{t}`" for stage, tests in skip.items() for t in tests]
         lines += [""]
     elif baseline is None:
@@ -370,6 +370,10 @@ def main(argv=None):
     ap.add_argument("--no-baseline", action="store_true", help="skip the run of the unmutated suite")
     ap.add_argument("--strict-baseline", action="store_true",
                     help="stop if the unmutated suite fails (default: leave its failing tests out and say so)")
+    ap.add_argument("--leave-out", action="append", default=[], metavar="TEST",
+                    help="a test to leave out of every run (repeatable): a GoogleTest name (Suite.Test, "
+                         "or a pattern such as Dynamics.*) or a pytest node id under tests/py "
+                         "(test_golden.py): what would the rest of the suite catch without it?")
     ap.add_argument("--scratch", default="/tmp/ldem-mut", help="scratch folder (default /tmp/ldem-mut)")
     ap.add_argument("--jobs", type=int, default=2, help="build jobs (default 2)")
     ap.add_argument("--timeout", type=int, default=3600, help="seconds per test stage before it counts as failed")
@@ -434,6 +438,11 @@ def main(argv=None):
             print(f"  FAILING UNMUTATED, left out of every mutation's run: {listed}", flush=True)
         with open(cache, "w") as f:
             json.dump({"head": head, "baseline": baseline, "skip": skip}, f)
+
+    for test in args.leave_out:
+        stage = "pytest" if (".py" in test or "::" in test) else "gtest"
+        skip.setdefault(stage, []).append(test)
+        print(f"  left out on request: {stage} {test}", flush=True)
 
     results = []
     for i, m in enumerate(muts, 1):
