@@ -1,6 +1,6 @@
 """Why the large uniform cubes are weaker (issue 10, item 7).
 
-    /usr/bin/python3 scripts/peak_ablation.py SIZE SEEDS     e.g. 0.48 1,2,3
+    /usr/bin/python3 scripts/peak_ablation.py SIZE SEEDS [THREADS]    e.g. 0.48 1,2,3 1
 
 One factor at a time on a cube (both loads), each run stopped past its peak,
 one JSON line per run: peak, its
@@ -12,12 +12,14 @@ import numpy as np
 import ldem
 
 size = float(sys.argv[1]); seeds = [int(s) for s in sys.argv[2].split(",")]
+threads = int(sys.argv[3]) if len(sys.argv) > 3 else 0
 VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
-            "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9}}
+            "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9},
+            "G_f per module": {"Gf_draw": "module"}}
 for load in ("uniform", "triangular"):
     for name, kw in VARIANTS.items():
         for seed in seeds:
-            t = ldem.CubeTest(size=size, load=load, seed=seed, threads=2, stop_at="load_loss",
+            t = ldem.CubeTest(size=size, load=load, seed=seed, threads=threads, stop_at="load_loss",
                               final_strain=3e-4 if load == "uniform" else 2e-4, **kw)
             r = t.run()
             s, c = r.summary, r.curve

@@ -14,6 +14,7 @@ struct Material {
     double GfMean = 100.0;      // mean specific fracture energy E[G_f] [N/m]
     double GfCV = 1.0;          // coefficient of variation of G_f [-]
     double corrLength = 0.0;    // correlation length of the G_f field [m]; 0 = one draw per bar
+    bool GfPerModule = false;   // one G_f per module (its bars alike) instead of one per bar
     double epsP = 6.3e-5;       // critical (peak) strain of a bar [-]
     double ca = 0.1385;         // fracture-area coefficient c_a [-]
 

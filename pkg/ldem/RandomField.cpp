@@ -1,5 +1,7 @@
 #include "ldem/RandomField.hpp"
 
+#include <algorithm>
+#include <array>
 #include <boost/math/tools/roots.hpp>
 #include <cmath>
 #include <limits>
@@ -53,6 +55,30 @@ Weibull weibullFromMeanCV(double mean, double cv) {
     return {k, mean / std::tgamma(1 + 1 / k)};
 }
 
+namespace {
+std::array<double, 3> midpoint(const Lattice& lat, std::int32_t a, std::int32_t b) {
+    const auto pa = lat.position(a), pb = lat.position(b);
+    return {0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1]), 0.5 * (pa[2] + pb[2])};
+}
+
+// (i, j, k) of the module holding point x, clamped into the lattice.
+std::array<int, 3> moduleOf(const Lattice& lat, const std::array<double, 3>& x) {
+    const int n[3] = {lat.nx, lat.ny, lat.nz};
+    std::array<int, 3> ijk{};
+    for (int d = 0; d < 3; ++d)
+        ijk[d] = std::min(std::max(int(std::floor(x[d] / lat.L0 + 1e-9)), 0), n[d] - 1);
+    return ijk;
+}
+
+// Where a bar samples the random field: its midpoint, or its module's centre.
+std::array<double, 3> samplePoint(const Lattice& lat, bool perModule, std::int32_t a, std::int32_t b) {
+    const auto x = midpoint(lat, a, b);
+    if (!perModule) return x;
+    const auto ijk = moduleOf(lat, x);
+    return {(ijk[0] + 0.5) * lat.L0, (ijk[1] + 0.5) * lat.L0, (ijk[2] + 0.5) * lat.L0};
+}
+}  // namespace
+
 std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, std::uint64_t seed,
                                         int fourierModes) {
     const Weibull w = weibullFromMeanCV(m.GfMean, m.GfCV);
@@ -60,7 +86,14 @@ std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, s
     std::vector<double> gf(nb);
     if (m.corrLength <= 0) {
         forEachBar(lat, [&](std::int64_t b, std::int32_t a, std::int32_t c, const BarRow&, int) {
-            gf[b] = w.quantile(hashedUniform(seed, a, c));
+            if (!m.GfPerModule) {
+                gf[b] = w.quantile(hashedUniform(seed, a, c));
+                return;
+            }
+            // Key (module number, ~0): no (node, node) key of a bar can collide with it.
+            const auto ijk = moduleOf(lat, midpoint(lat, a, c));
+            const std::uint64_t module = (std::uint64_t(ijk[2]) * lat.ny + ijk[1]) * lat.nx + ijk[0];
+            gf[b] = w.quantile(hashedUniform(seed, module, ~std::uint64_t(0)));
         });
         return gf;
     }
@@ -78,8 +111,7 @@ std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, s
     }
     const double amp = std::sqrt(2.0 / N);
     forEachBar(lat, [&](std::int64_t b, std::int32_t nodeA, std::int32_t nodeB, const BarRow&, int) {
-        const auto pa = lat.position(nodeA), pb = lat.position(nodeB);
-        const double x = 0.5 * (pa[0] + pb[0]), y = 0.5 * (pa[1] + pb[1]), z = 0.5 * (pa[2] + pb[2]);
+        const auto [x, y, z] = samplePoint(lat, m.GfPerModule, nodeA, nodeB);
         double g = 0;
         for (int n = 0; n < N; ++n) g += std::cos(kx[n] * x + ky[n] * y + kz[n] * z + phase[n]);
         g *= amp;

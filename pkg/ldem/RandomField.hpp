@@ -31,6 +31,9 @@ double hashedUniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b);
 //   corrLength > 0: g(x) = sqrt(2/N) sum_n cos(k_n.x + phi_n), k_n ~ N(0, 2/l_c^2),
 //     a Gaussian field with covariance exp(-(r/l_c)^2) (random Fourier modes),
 //     evaluated at bar midpoints and mapped by G = F_W^-1(Phi(g)).
+// m.GfPerModule: every bar takes the value of the module that holds its
+//   midpoint (drawn keyed by the module, or the field at the module's centre);
+//   a bar on a face or edge shared by modules takes the one at higher indices.
 std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, std::uint64_t seed,
                                         int fourierModes = 512);
 

@@ -46,6 +46,8 @@ class CubeTest:
     Gf_mean: float = _param(_MAT.Gf_mean, "N/m", "mean specific fracture energy E[G_f]")
     Gf_cv: float = _param(_MAT.Gf_cv, "", "coefficient of variation of G_f (1 = 100%%)")
     corr_length: float = _param(_MAT.corr_length, "m", "correlation length of G_f (0: one draw per bar)")
+    Gf_draw: str = _param("module" if _MAT.Gf_per_module else "bar", "", "G_f drawn per bar, or per module "
+                          "(the bars of a module alike)", choices=("bar", "module"))
     eps_p: float = _param(_MAT.eps_p, "", "critical strain of a bar (end of the elastic branch)")
     c_a: float = _param(_MAT.c_a, "", "fracture-area coefficient c_a")
     zeta: float = _param(_RUN.zeta, "", "damping ratio on the fundamental mode (D_f = 2 zeta omega_1)")
@@ -98,6 +100,9 @@ class CubeTest:
         m = _core.Material()
         m.E, m.nu, m.rho, m.Gf_mean, m.Gf_cv = self.E, self.nu, self.rho, self.Gf_mean, self.Gf_cv
         m.corr_length, m.eps_p, m.c_a = self.corr_length, self.eps_p, self.c_a
+        if self.Gf_draw not in ("bar", "module"):
+            raise ValueError(f"Gf_draw must be bar or module (got '{self.Gf_draw}')")
+        m.Gf_per_module = self.Gf_draw == "module"
         m.validate()
         lp = _core.LoadingParams()
         lp.shape, lp.strain_rate, lp.ramp_time = self.load, self.strain_rate, self.ramp_time

@@ -57,7 +57,10 @@ def case_dir(out: str, test: CubeTest) -> str:
 
 
 def _comparable(params: dict) -> dict:
-    return {k: v for k, v in params.items() if k != "threads"}
+    """The parameters that decide a case's result; one declared after the case
+    ran counts at its default (the run it would have made is the same)."""
+    defaults = {f.name: f.default for f in dataclasses.fields(CubeTest)}
+    return {k: params.get(k, d) for k, d in defaults.items() if k != "threads"}
 
 
 def is_finished(case_dir: str, test: CubeTest) -> bool:

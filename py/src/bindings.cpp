@@ -42,6 +42,7 @@ PYBIND11_MODULE(_core, m) {
         .def_readwrite("Gf_mean", &Material::GfMean)
         .def_readwrite("Gf_cv", &Material::GfCV)
         .def_readwrite("corr_length", &Material::corrLength)
+        .def_readwrite("Gf_per_module", &Material::GfPerModule)
         .def_readwrite("eps_p", &Material::epsP)
         .def_readwrite("c_a", &Material::ca)
         .def("validate", &Material::validate);

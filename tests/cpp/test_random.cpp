@@ -153,6 +153,42 @@ TEST(FractureEnergyField, IndependentDrawsPerBar) {
     EXPECT_LT(std::abs(pearson(p, q)), 4 / std::sqrt(double(p.size())) + 0.01);
 }
 
+// One draw per module: the bars whose midpoints lie inside a module share its
+// G_f; distinct modules draw independently from the same Weibull marginal.
+TEST(FractureEnergyField, PerModuleDrawsShareTheModulesValue) {
+    Material m;
+    m.GfPerModule = true;
+    const int n = 12;
+    const double L0 = 0.02;
+    const Lattice lat = buildCubicLattice(n, n, n, L0, m);
+    const auto gf = fractureEnergyField(lat, m, 5);
+    EXPECT_EQ(gf, fractureEnergyField(lat, m, 5));
+    const BarTable t = listBars(lat);
+    const auto x0 = nodePositions(lat);
+    std::vector<double> moduleValue(n * n * n, -1.0);
+    std::vector<int> barsIn(n * n * n, 0);
+    for (std::int64_t b = 0; b < lat.numBars(); ++b) {
+        int ijk[3];
+        for (int d = 0; d < 3; ++d)  // module of the midpoint, shared faces to the higher index
+            ijk[d] = std::min(int(std::floor((x0[d][t.n1[b]] + x0[d][t.n2[b]]) / (2 * L0) + 1e-9)), n - 1);
+        const int mod = (ijk[2] * n + ijk[1]) * n + ijk[0];
+        if (moduleValue[mod] < 0) moduleValue[mod] = gf[b];
+        EXPECT_EQ(gf[b], moduleValue[mod]) << "bar " << b;
+        ++barsIn[mod];
+    }
+    // Every module holds its 8 diagonals at least, and the marginal is the
+    // exponential of mean 100 over the 1728 modules (SE 100/sqrt 1728).
+    EXPECT_GE(*std::min_element(barsIn.begin(), barsIn.end()), 8);
+    double s = 0, s2 = 0;
+    for (double g : moduleValue) s += g, s2 += g * g;
+    const double N = double(moduleValue.size()), mean = s / N;
+    EXPECT_NEAR(mean, 100.0, 4 * 100 / std::sqrt(N));
+    EXPECT_NEAR(std::sqrt(s2 / N - mean * mean) / mean, 1.0, 0.12);
+    // Per module differs from per bar for the same seed.
+    m.GfPerModule = false;
+    EXPECT_NE(gf, fractureEnergyField(lat, m, 5));
+}
+
 // Correlated field: its correlation function against the analytic one, at
 // seven distances from 0.35 l_c to 3 l_c. The normal score of G_f at a bar,
 // Phi^-1(F_W(G_f)), is the Gaussian field g at the bar's midpoint (the Weibull

@@ -14,6 +14,7 @@ BAD_INPUT = [
     (["--nu", "0.7"], "nu must be in [0, 0.5)"),
     (["--Gf-cv", "-0.1"], "CV of G_f must be >= 0"),
     (["--load", "shear"], "invalid choice"),
+    (["--Gf-draw", "cell"], "invalid choice"),
     (["--E", "abc"], "invalid float value"),
     (["--L0", "0"], "L0 must be positive"),
     (["--dt", "1"], "stability limit"),

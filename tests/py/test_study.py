@@ -93,6 +93,13 @@ def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
     with open(os.path.join(dirs[1], "summary.json"), "w") as f:
         json.dump(s, f)
     os.remove(os.path.join(dirs[2], "slice.npz"))  # died before its last file
+    # Ran before a parameter was declared (at its default now): still finished.
+    with open(os.path.join(dirs[0], "summary.json")) as f:
+        s = json.load(f)
+    del s["parameters"]["Gf_draw"]
+    with open(os.path.join(dirs[0], "summary.json"), "w") as f:
+        json.dump(s, f)
+    stamp[dirs[0]] = os.path.getmtime(os.path.join(dirs[0], "summary.json"))
     ran = []
     again = study.run_cases(tests, out, log=ran.append)
     assert ran[0] == f"2 of 4 cases already finished in {out}/cases"
