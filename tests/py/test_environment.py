@@ -7,7 +7,7 @@ import subprocess
 
 import pytest
 
-from conftest import BUILD_PY, subprocess_env
+from conftest import BUILD_PY, ROOT, subprocess_env
 
 # README, Install: the Debian packages install.sh installs, as Python modules.
 MODULES = {"numpy": "python3-numpy", "scipy": "python3-scipy", "matplotlib": "python3-matplotlib",
@@ -53,3 +53,26 @@ def test_yade_subprocess_imports_the_build_under_test(tmp_path):
     assert r.returncode == 0, r.stdout + r.stderr
     paths = [line for line in r.stdout.splitlines() if line.endswith(".py") or line.endswith(".so")]
     assert len(paths) == 2 and not _under_build(paths), (r.stdout, BUILD_PY)
+
+
+def _packages():
+    with open(os.path.join(ROOT, "debian-packages.txt")) as f:
+        return [p for line in f if not line.startswith("#") for p in line.split()]
+
+
+def test_readme_lists_the_packages_install_sh_installs():
+    with open(os.path.join(ROOT, "README.md")) as f:
+        readme = " ".join(f.read().split())
+    assert " ".join(_packages()) in readme.replace("`", "")
+
+
+def test_the_test_command_installs_nothing():
+    """tests/run_all.sh builds and tests the checkout: no apt, no sudo, no install.sh,
+    no cmake --install; it only asks dpkg what is missing (nothing is, here)."""
+    with open(os.path.join(ROOT, "tests", "run_all.sh")) as f:
+        code = [line for line in f if not line.lstrip().startswith("#")]
+    text = "".join(code)
+    for forbidden in ("apt", "sudo", "bash install.sh", "--install"):  # its message may name install.sh
+        assert forbidden not in text, forbidden
+    r = subprocess.run(["bash", os.path.join(ROOT, "tests", "missing_packages.sh")], capture_output=True, text=True)
+    assert r.returncode == 0 and r.stdout.strip() == "", r.stdout + r.stderr
