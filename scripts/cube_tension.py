@@ -24,7 +24,7 @@ test = ldem.CubeTest(size=p["size"], load=p["load"], seed=p["seed"], strain_rate
 # 3. Run to split. The time-step loop is C++ (ldem._core.Simulation.run); a
 #    progress bar shows on a terminal.
 name = p["description"] or f"{p['load']}_{p['size']}m_seed{p['seed']}"
-result = test.run(out=f"{p['out']}/{name}")
+result = ldem.run_cube(test, out=f"{p['out']}/{name}")
 
 # 4. The curve as numpy arrays, and the summary.
 strain, stress = result.curve["mean_strain"], result.curve["stress_MPa"]

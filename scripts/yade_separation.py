@@ -59,7 +59,7 @@ def main(argv):
     a = parse(argv)
     n = a.modules
     lp = _core.LoadingParams()
-    lp.shape = a.load
+    lp.load = a.load
     lp.strain_rate = a.strain_rate
     rp = _core.RunParams()
     rp.seed = a.seed

@@ -1,26 +1,10 @@
 #include "ldem/Loading.hpp"
 
 #include <cmath>
-#include <stdexcept>
 
 namespace ldem {
 
-LoadShape parseLoadShape(const std::string& name) {
-    if (name == "uniform") return LoadShape::Uniform;
-    if (name == "triangular") return LoadShape::Triangular;
-    throw std::invalid_argument("unknown load '" + name + "' (expected uniform or triangular)");
-}
-
-std::string loadShapeName(LoadShape s) { return s == LoadShape::Uniform ? "uniform" : "triangular"; }
-
-void LoadingParams::validate() const {
-    if (!(strainRate > 0) || !std::isfinite(strainRate))
-        throw std::invalid_argument("strain rate must be positive (got " + std::to_string(strainRate) + " 1/s)");
-    if (!(rampTime >= 0) || !std::isfinite(rampTime))
-        throw std::invalid_argument("ramp time must be >= 0 (got " + std::to_string(rampTime) + " s)");
-    if (!(lossSpeedup >= 1) || !std::isfinite(lossSpeedup))
-        throw std::invalid_argument("speed-up after load loss must be >= 1 (got " + std::to_string(lossSpeedup) + ")");
-}
+void LoadingParams::validate() const { LDEM_LOADING_PARAMETERS(LDEM_CHECK_MEMBER) }
 
 namespace {
 // Integral over [0, t] of a velocity that rises from 0 to 1 as (1 - cos(pi t/t_r))/2.

@@ -18,20 +18,16 @@
 #include <vector>
 
 #include "ldem/Lattice.hpp"
+#include "ldem/Parameters.hpp"
 
 namespace ldem {
 
 enum class LoadShape { Uniform, Triangular };
-LoadShape parseLoadShape(const std::string& name);  // "uniform" | "triangular"
-std::string loadShapeName(LoadShape s);
 
+// LDEM_LOADING_PARAMETERS (Parameters.hpp): load shape, strain rate, smooth
+// start, lateral DOFs of the faces, speed-up after load loss.
 struct LoadingParams {
-    LoadShape shape = LoadShape::Uniform;
-    double strainRate = 0.02;      // vertical strain rate at the most-pulled edge [1/s]
-    double rampTime = 0.0;         // smooth start duration [s]; 0 = two fundamental periods
-    bool topLateralFree = true;    // upper nodes free in x, y (else held at zero)
-    bool bottomLateralFree = false;  // lower nodes on rollers (only rigid motion pinned)
-    double lossSpeedup = 20.0;     // drive velocity factor once the load is lost [-]
+    LDEM_LOADING_PARAMETERS(LDEM_DECLARE_MEMBER)
     void validate() const;
 };
 

@@ -5,19 +5,14 @@
 #include <stdexcept>
 #include <string>
 
+#include "ldem/Parameters.hpp"
+
 namespace ldem {
 
+// LDEM_MATERIAL_PARAMETERS (Parameters.hpp): E, nu, rho, G_f (mean, CV,
+// correlation length, per bar or per module), eps_p, c_a.
 struct Material {
-    double E = 3.5e10;          // Young's modulus [Pa]
-    double nu = 0.25;           // Poisson's ratio [-]
-    double rho = 2400.0;        // density [kg/m^3]
-    double GfMean = 100.0;      // mean specific fracture energy E[G_f] [N/m]
-    double GfCV = 1.0;          // coefficient of variation of G_f [-]
-    double corrLength = 0.0;    // correlation length of the G_f field [m]; 0 = one draw per bar
-    bool GfPerModule = false;   // one G_f per module (its bars alike) instead of one per bar
-    double epsP = 6.3e-5;       // critical (peak) strain of a bar [-]
-    double ca = 0.1385;         // fracture-area coefficient c_a [-]
-
+    LDEM_MATERIAL_PARAMETERS(LDEM_DECLARE_MEMBER)
     // Throws std::invalid_argument with a one-line message on bad input.
     void validate() const;
 };

@@ -10,27 +10,6 @@
 
 namespace ldem {
 
-StopAt parseStopAt(const std::string& name) {
-    if (name == "separation") return StopAt::Separation;
-    if (name == "load_loss") return StopAt::LoadLoss;
-    throw std::invalid_argument("unknown stop event '" + name + "' (expected separation or load_loss)");
-}
-
-std::string stopAtName(StopAt s) { return s == StopAt::Separation ? "separation" : "load_loss"; }
-
-void RunParams::validate() const {
-    auto fail = [](const std::string& s) { throw std::invalid_argument(s); };
-    if (!(zeta >= 0) || !std::isfinite(zeta)) fail("damping ratio must be >= 0 (got " + std::to_string(zeta) + ")");
-    if (!(dt >= 0) || !std::isfinite(dt)) fail("time step must be >= 0 (got " + std::to_string(dt) + " s)");
-    if (!(dtSafety > 0 && dtSafety <= 1)) fail("time-step safety factor must be in (0, 1]");
-    if (!(finalStrain > 0)) fail("final strain must be positive (got " + std::to_string(finalStrain) + ")");
-    if (!(stopFraction >= 0 && stopFraction < 1)) fail("stop fraction must be in [0, 1)");
-    if (!(splitWindow >= 0) || !std::isfinite(splitWindow)) fail("split window must be >= 0 s");
-    if (!(energyTolerance > 0)) fail("energy tolerance must be positive");
-    if (recordEvery < 0) fail("record interval must be >= 0 steps");
-    if (threads < 0) fail("threads must be >= 0");
-}
-
 bool LoadLossDetector::update(double time, double stress, double peakStress, std::int64_t broken) {
     recent_.emplace_back(time, stress);
     while (recent_.front().first < time - window_) recent_.pop_front();
@@ -38,6 +17,10 @@ bool LoadLossDetector::update(double time, double stress, double peakStress, std
     for (const auto& r : recent_) sum += r.second;
     return broken > 0 && time >= window_ && sum / recent_.size() < fraction_ * peakStress;
 }
+
+Simulation::Simulation(const CubeTestParams& p)
+    : Simulation(p.geometry.modules(), p.geometry.modules(), p.geometry.modules(), p.geometry.L0, p.material,
+                 p.loading, p.run) {}
 
 Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
                        const RunParams& run)

@@ -11,33 +11,16 @@
 #include <utility>
 #include <vector>
 
+#include "ldem/CubeTest.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
 #include "ldem/Modal.hpp"
+#include "ldem/RunParams.hpp"
 
 namespace ldem {
-
-enum class StopAt { Separation, LoadLoss };
-StopAt parseStopAt(const std::string& name);  // "separation" | "load_loss"
-std::string stopAtName(StopAt s);
-
-struct RunParams {
-    std::uint64_t seed = 1;      // random specimen
-    double zeta = 0.02;          // damping ratio on the fundamental mode [-]
-    double dt = 0.0;             // time step [s]; 0 = safety x stability limit
-    double dtSafety = 0.4;       // fraction of the linear stability limit 2/omega_max (see Simulation.cpp)
-    StopAt stopAt = StopAt::Separation;  // the event that ends the run
-    double finalStrain = 0.5;    // stop at this mean strain if the event has not come [-]
-    double stopFraction = 0.01;  // load lost when stress < this fraction of the peak, after the peak,
-    double splitWindow = 0.0;    // ... on average over this time [s]; 0 = two fundamental periods
-    double energyTolerance = 0.01;  // a run whose energy balance error exceeds this is flagged
-    int recordEvery = 0;         // steps between records; 0 = one per eps_p/50 of mean strain at the initial rate
-    int threads = 0;             // OpenMP threads; 0 = default
-    void validate() const;
-};
 
 struct CurvePoint {
     std::int64_t step = 0;
@@ -95,6 +78,8 @@ class Simulation {
 public:
     Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
                const RunParams& run);
+    // The cube of p.geometry (size / L0 modules a side).
+    explicit Simulation(const CubeTestParams& p);
 
     // The time-step loop: records every recordEvery steps, calls observer (which may
     // return false to stop), speeds the drive up once the load is lost, stops

@@ -25,17 +25,22 @@ def _option(name: str) -> str:
 
 
 def add_cube_options(p: argparse.ArgumentParser, skip=()) -> None:
+    """One option per field of ldem.CubeTest (that is, per parameter of
+    pkg/ldem/Parameters.hpp), grouped as declared there."""
     from .cube import CubeTest
 
+    groups = {}
     for f in dataclasses.fields(CubeTest):
         if f.name in skip:
             continue
         md = f.metadata
+        group = groups.get(md["group"]) or groups.setdefault(md["group"], p.add_argument_group(md["group"]))
         unit = f" [{md['unit']}]" if md["unit"] else ""
         kw = {"choices": md["choices"]} if "choices" in md else {}
-        p.add_argument(_option(f.name), dest=f.name, type=type(f.default), default=f.default,
-                       metavar=f.name.upper() if not kw else None,
-                       help=f"{md['help']}{unit}", **kw)  # the parser's formatter adds (default: ...)
+        domain = "" if kw else f"; {md['domain']}"
+        group.add_argument(_option(f.name), dest=f.name, type=type(f.default), default=f.default,
+                           metavar=f.name.upper() if not kw else None,
+                           help=f"{md['help']}{unit}{domain}".replace("%", "%%"), **kw)  # the formatter adds (default: ...)
 
 
 def cube_from_args(args) -> "CubeTest":
@@ -48,7 +53,9 @@ def cube_from_args(args) -> "CubeTest":
 def cmd_cube(args) -> int:
     test = cube_from_args(args)
     progress = False if args.no_progress else None
-    result = test.run(out=args.out, progress=progress, plots=not args.no_plots)
+    from .runner import run_cube
+
+    result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots)
     s = result.summary
     print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
           + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if test.load == "triangular" else ""))

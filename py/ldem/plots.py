@@ -9,7 +9,11 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from .output import BROKEN, DAMAGED, STATE_COLOURS, STATE_NAMES, UNDAMAGED, damage_states  # noqa: E402
+from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
+
+# The study's colours.
+STATE_COLOURS = {UNDAMAGED: "cyan", DAMAGED: "orange", BROKEN: "red"}
+STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 
 def curve_figure(result, path: str) -> None:
@@ -58,7 +62,7 @@ def central_slice(sim, axis: int = 1):
     keep = near[n1] & near[n2]
     plane = [a for a in range(3) if a != axis]
     seg = np.stack([x[n1[keep]][:, plane], x[n2[keep]][:, plane]], axis=1)
-    return seg, damage_states(sim.kappa[keep], sim.eps_p, sim.eps_r[keep])
+    return seg, sim.damage_state[keep]
 
 
 def draw_slice(ax, seg, state) -> dict:

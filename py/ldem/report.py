@@ -1,8 +1,10 @@
-"""Figures and report.md of a study folder (see ldem.study for its layout)."""
+"""Figures and report.md of a study, from its data: the cases (test, summary,
+curve, central slice), the tables and the fits. Reads no files; writes the
+figures and report.md into the folder it is given."""
 from __future__ import annotations
 
 import os
-from typing import List, Sequence
+from typing import Dict, List, NamedTuple, Optional, Sequence
 
 import matplotlib
 
@@ -11,7 +13,23 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 from . import plots  # noqa: E402
-from .study import B0, case_dir, load_curve, load_summary, mean_curve, read_csv  # noqa: E402
+from .curves import mean_curve  # noqa: E402
+
+
+class Case(NamedTuple):
+    """One case of a study, as the report needs it."""
+    test: object      # ldem.CubeTest
+    summary: dict     # summary.json
+    curve: dict       # column -> numpy array (curve.csv)
+    slice: tuple      # (segments, damage states) of the central slice at the end
+
+
+def curve_groups(cases: Sequence[Case]) -> Dict[tuple, List[dict]]:
+    """(load, size) -> the curves of its specimens, in case order."""
+    groups: Dict[tuple, List[dict]] = {}
+    for c in cases:
+        groups.setdefault((c.test.load, c.test.size), []).append(c.curve)
+    return groups
 
 
 def _save(fig, path):
@@ -51,17 +69,16 @@ def mean_curves_figure(groups, load, sizes, path):
     _save(fig, path)
 
 
-def fracture_energy_figure(out, tests, groups, load, sizes, path):
+def fracture_energy_figure(cases, load, sizes, path):
     """U_frac / U_min (fracture energy dissipated so far over G_f x face area)
     against the mean strain on a log axis, to separation: each specimen faint
     with its load loss (|) and separation (x) marked, and their mean."""
     fig, ax = plt.subplots(figsize=(7.0, 4.6))
     for size in sizes:
-        group = [t for t in tests if t.load == load and t.size == size]
-        u_min = load_summary(case_dir(out, group[0]))["min_fracture_energy_J"]
+        group = [c for c in cases if c.test.load == load and c.test.size == size]
+        u_min = group[0].summary["min_fracture_energy_J"]
         color = None
-        for t, c in zip(group, groups[(load, size)]):
-            s = load_summary(case_dir(out, t))
+        for s, c in ((g.summary, g.curve) for g in group):
             keep = c["mean_strain"] > 0
             line, = ax.plot(c["mean_strain"][keep], c["fracture_J"][keep] / u_min, lw=0.6, alpha=0.35, color=color)
             color = line.get_color()
@@ -69,7 +86,7 @@ def fracture_energy_figure(out, tests, groups, load, sizes, path):
                 if s.get(event):
                     ax.plot(s[event]["mean_strain"], s[event]["fracture_energy_J"] / u_min, marker, color=color,
                             ms=7)
-        x, y = mean_curve(groups[(load, size)], "fracture_J", scale=1.0 / u_min, log_from=1e-5)
+        x, y = mean_curve([g.curve for g in group], "fracture_J", scale=1.0 / u_min, log_from=1e-5)
         ax.plot(x, y, lw=1.8, color=color, label=f"{size:g} m (mean)")
     ax.set(xscale="log", xlim=(1e-5, None), xlabel="mean strain", ylabel="U_frac / U_min")
     ax.grid(alpha=0.3, which="both")
@@ -78,13 +95,12 @@ def fracture_energy_figure(out, tests, groups, load, sizes, path):
     _save(fig, path)
 
 
-def cracks_figure(out, tests, load, sizes, path, seed=1):
+def cracks_figure(cases, load, sizes, path, seed=1):
     """Central slices at the end of the run, one specimen per size."""
     fig, axes = plt.subplots(1, len(sizes), figsize=(4.6 * len(sizes), 5.0), squeeze=False)
     for ax, size in zip(axes[0], sizes):
-        t = next(t for t in tests if t.load == load and t.size == size and t.seed == seed)
-        with np.load(os.path.join(case_dir(out, t), "slice.npz")) as z:
-            plots.draw_slice(ax, z["segments"], z["states"])
+        c = next(c for c in cases if c.test.load == load and c.test.size == size and c.test.seed == seed)
+        plots.draw_slice(ax, *c.slice)
         ax.set_title(f"{size:g} m, seed {seed}", fontsize=9)
     fig.legend(handles=plots.state_handles(), loc="lower center", ncol=3, fontsize=10, frameon=False)
     fig.suptitle(f"central slices at the end of the test, {load} loading", fontsize=11)
@@ -93,7 +109,7 @@ def cracks_figure(out, tests, load, sizes, path, seed=1):
     plt.close(fig)
 
 
-def fractal_figure(table, cases, fits, path):
+def fractal_figure(table, case_rows, fits, path):
     """Mean U_num per size (and each case's, faint) with the fitted law, log-log."""
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for load, fit in fits.items():
@@ -101,30 +117,29 @@ def fractal_figure(table, cases, fits, path):
         b = np.array([r["size_m"] for r in rows])
         u = np.array([r["U_num_J_mean"] for r in rows])
         line, = ax.plot(b, u, "o", label=f"{load}: mean U_num")
-        each = [(c["size_m"], c["U_num_J"]) for c in cases if c["load"] == load and c["U_num_J"] != ""]
+        each = [(c["size_m"], c["U_num_J"]) for c in case_rows if c["load"] == load and c["U_num_J"] != ""]
         ax.plot(*zip(*each), ".", color=line.get_color(), alpha=0.35)
         bb = np.geomspace(b.min(), b.max(), 50)
         ax.plot(bb, fit["U_b0_J"] * (bb / fit["b0_m"]) ** fit["d"], "-", color=line.get_color(),
                 label=f"{load}: U(b0)(b/b0)^d, d = {fit['d']:.3f}")
     ax.set(xscale="log", yscale="log", xlabel="cube side b [m]", ylabel="U_num [J]",
-           title=f"fracture energy to separate the cube (U_num), fractal law with b0 = {B0:g} m")
+           title="fracture energy to separate the cube (U_num), fractal law with b0 = "
+                 f"{next(iter(fits.values()))['b0_m']:g} m")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=8)
     _save(fig, path)
 
 
-def damping_figures(out, tests) -> List[str]:
+def damping_figures(out, cases) -> List[str]:
     """One figure per load: the stress-strain curve at each damping ratio."""
     names = []
-    for load in dict.fromkeys(t.load for t in tests):
+    for load in dict.fromkeys(c.test.load for c in cases):
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        for t in (t for t in tests if t.load == load):
-            c = load_curve(case_dir(out, t))
-            s = load_summary(case_dir(out, t))
+        for t, s, c in ((g.test, g.summary, g.curve) for g in cases if g.test.load == load):
             ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=1.4,
                     label=f"zeta = {t.zeta:g}: peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
         _strain_axis(ax, "normal stress [MPa]")
-        ax.set_title(f"damping, {tests[0].size:g} m cube, {load}, seed {tests[0].seed}")
+        ax.set_title(f"damping, {cases[0].test.size:g} m cube, {load}, seed {cases[0].test.seed}")
         ax.legend(fontsize=8)
         names.append(f"damping_{load}.png")
         _save(fig, os.path.join(out, names[-1]))
@@ -146,29 +161,34 @@ def _pct(a, b):
     return f"{100 * (a - b) / b:+.1f} %"
 
 
-def size_effect_report(out, tests, cases, table, fits, groups) -> None:
-    """report.md and the figures; groups: (load, size) -> the specimens' curves (study.load_curves)."""
-    loads = list(dict.fromkeys(t.load for t in tests))
-    sizes = sorted({t.size for t in tests})
+def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_rows: Optional[list] = None,
+                       discussion: Optional[str] = None) -> None:
+    """report.md and the figures in folder out. rows: the cases' table rows
+    (cases.csv), table: per (load, size) (summary.csv), fits: the fractal law
+    per load; damping_rows and discussion, if given, are appended."""
+    loads = list(dict.fromkeys(c.test.load for c in cases))
+    sizes = sorted({c.test.size for c in cases})
+    groups = curve_groups(cases)
     figs = []
     for load in loads:
         ends = sorted({sizes[0], sizes[-1]})
         specimen_curves_figure(groups, load, ends, os.path.join(out, f"curves_{load}.png"))
         mean_curves_figure(groups, load, sizes, os.path.join(out, f"mean_curves_{load}.png"))
-        cracks_figure(out, tests, load, sizes, os.path.join(out, f"cracks_{load}.png"))
-        fracture_energy_figure(out, tests, groups, load, sizes, os.path.join(out, f"fracture_energy_{load}.png"))
+        cracks_figure(cases, load, sizes, os.path.join(out, f"cracks_{load}.png"))
+        fracture_energy_figure(cases, load, sizes, os.path.join(out, f"fracture_energy_{load}.png"))
         figs += [(f"curves_{load}.png", f"every specimen and the mean, {load}"),
                  (f"mean_curves_{load}.png", f"mean curves of all sizes, {load}"),
                  (f"cracks_{load}.png", f"crack pictures (central slice, seed 1), {load}"),
                  (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain (log) to separation, {load}")]
     if fits:
-        fractal_figure(table, cases, fits, os.path.join(out, "fractal.png"))
+        fractal_figure(table, rows, fits, os.path.join(out, "fractal.png"))
         figs.append(("fractal.png", "U_num against size, fractal law"))
-    write_report(out, tests, table, fits, figs)
+    write_report(out, cases, table, fits, figs, damping_rows, discussion)
 
 
-def write_report(out, tests, table, fits, figs) -> None:
-    first = load_summary(case_dir(out, tests[0]))
+def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=None) -> None:
+    tests = [c.test for c in cases]
+    first = cases[0].summary
     p = first["parameters"]
     md = ["# Size-effect study: ldem against the reference study", "",
           f"{len(tests)} cube tension tests: sizes {', '.join(f'{s:g}' for s in sorted({t.size for t in tests}))} m, "
@@ -241,19 +261,15 @@ def write_report(out, tests, table, fits, figs) -> None:
         md += [_md_table(["load", "d", "energy per unit area ~ b^(d-2)", "rms log residual"],
                          [[ld, f"{f['d']:.3f}", f"{f['d_specific']:+.3f}", f"{f['rms_log_residual']:.3f}"]
                           for ld, f in fits.items()]), ""]
-    damping_csv = os.path.join(out, "damping.csv")
-    if os.path.exists(damping_csv):
-        rows = read_csv(damping_csv)
+    if damping_rows:  # the damping study run into the same folder: its table and figures
+        rows = damping_rows
         md += ["## Damping", "", "`ldem study damping`: the same specimen at several damping ratios.", "",
                _md_table(["load", "size [m]", "zeta", "peak [MPa]", "strain at peak", "U_num/U_min"],
                          [[r["load"], f"{r['size_m']:g}", f"{r['zeta']:g}", f"{r['peak_stress_MPa']:.3f}",
                            f"{r['strain_at_peak']:.3e}", _num(r["U_ratio"], ".3f")] for r in rows]), ""]
-        figs += [(f, f"damping, {f[8:-4]}") for f in sorted(os.listdir(out)) if f.startswith("damping_")
-                 and f.endswith(".png")]
+        figs += [(f"damping_{ld}.png", f"damping, {ld}") for ld in sorted(dict.fromkeys(r["load"] for r in rows))]
     md += ["## Figures", ""] + [f"![{title}]({name})\n" for name, title in figs]
-    discussion = os.path.join(out, "discussion.md")
-    if os.path.exists(discussion):
-        with open(discussion) as f:
-            md += ["## Discussion", "", f.read().strip(), ""]
+    if discussion:
+        md += ["## Discussion", "", discussion.strip(), ""]
     with open(os.path.join(out, "report.md"), "w") as f:
         f.write("\n".join(md) + "\n")

@@ -6,7 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "ldem/CurveCsv.hpp"
+#include "ldem/CubeTest.hpp"
 #include "ldem/HillerborgLaw.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Lattice.hpp"
@@ -34,45 +34,45 @@ PYBIND11_MODULE(_core, m) {
 
     py::register_exception<InstabilityError>(m, "InstabilityError", PyExc_RuntimeError);
 
-    py::class_<Material>(m, "Material")
+    // The parameters: one table (pkg/ldem/Parameters.hpp); each struct's
+    // attributes, their defaults and checks are read from it.
+    m.def(
+        "parameter_table",
+        [] {
+            py::list rows;
+            for (const ParamInfo& p : cubeTestParameters()) {
+                py::dict d;
+                d["group"] = p.group, d["name"] = p.name, d["unit"] = p.unit, d["help"] = p.help;
+                d["kind"] = p.kind, d["default"] = p.defaultValue, d["domain"] = p.domain.describe();
+                d["choices"] = p.domain.names;
+                rows.append(d);
+            }
+            return rows;
+        },
+        "every parameter of a cube test: group, name, unit, help, kind (float/int/choice), default, domain, choices");
+    auto groupStruct = [&](auto cls, const std::string& group) {
+        using T = typename decltype(cls)::type;
+        cls.def(py::init<>()).def("validate", &T::validate);
+        for (const ParamInfo& p : cubeTestParameters())
+            if (p.group == group) {
+                const std::string name = p.name;
+                cls.def_property(
+                    name.c_str(), [name](const T& s) { return getParameter(s, name); },
+                    [name](T& s, const ParamValue& v) { setParameter(s, name, v); }, p.help.c_str());
+            }
+    };
+    groupStruct(py::class_<Material>(m, "Material"), "material");
+    groupStruct(py::class_<LoadingParams>(m, "LoadingParams"), "loading");
+    groupStruct(py::class_<RunParams>(m, "RunParams"), "run");
+    py::class_<CubeTestParams>(m, "CubeTestParams", "every parameter of a cube test, by name")
         .def(py::init<>())
-        .def_readwrite("E", &Material::E)
-        .def_readwrite("nu", &Material::nu)
-        .def_readwrite("rho", &Material::rho)
-        .def_readwrite("Gf_mean", &Material::GfMean)
-        .def_readwrite("Gf_cv", &Material::GfCV)
-        .def_readwrite("corr_length", &Material::corrLength)
-        .def_readwrite("Gf_per_module", &Material::GfPerModule)
-        .def_readwrite("eps_p", &Material::epsP)
-        .def_readwrite("c_a", &Material::ca)
-        .def("validate", &Material::validate);
-
-    py::class_<LoadingParams>(m, "LoadingParams")
-        .def(py::init<>())
-        .def_property(
-            "shape", [](const LoadingParams& p) { return loadShapeName(p.shape); },
-            [](LoadingParams& p, const std::string& s) { p.shape = parseLoadShape(s); })
-        .def_readwrite("strain_rate", &LoadingParams::strainRate)
-        .def_readwrite("ramp_time", &LoadingParams::rampTime)
-        .def_readwrite("top_lateral_free", &LoadingParams::topLateralFree)
-        .def_readwrite("bottom_lateral_free", &LoadingParams::bottomLateralFree)
-        .def_readwrite("loss_speedup", &LoadingParams::lossSpeedup);
-
-    py::class_<RunParams>(m, "RunParams")
-        .def(py::init<>())
-        .def_readwrite("seed", &RunParams::seed)
-        .def_readwrite("zeta", &RunParams::zeta)
-        .def_readwrite("dt", &RunParams::dt)
-        .def_readwrite("dt_safety", &RunParams::dtSafety)
-        .def_property(
-            "stop_at", [](const RunParams& p) { return stopAtName(p.stopAt); },
-            [](RunParams& p, const std::string& s) { p.stopAt = parseStopAt(s); })
-        .def_readwrite("energy_tolerance", &RunParams::energyTolerance)
-        .def_readwrite("final_strain", &RunParams::finalStrain)
-        .def_readwrite("stop_fraction", &RunParams::stopFraction)
-        .def_readwrite("split_window", &RunParams::splitWindow)
-        .def_readwrite("record_every", &RunParams::recordEvery)
-        .def_readwrite("threads", &RunParams::threads);
+        .def("__getitem__", [](const CubeTestParams& p, const std::string& k) { return getParameter(p, k); })
+        .def("__setitem__", [](CubeTestParams& p, const std::string& k, const ParamValue& v) { setParameter(p, k, v); })
+        .def("validate", &CubeTestParams::validate)
+        .def("modules", [](const CubeTestParams& p) { return p.geometry.modules(); })
+        .def_readonly("material", &CubeTestParams::material)
+        .def_readonly("loading", &CubeTestParams::loading)
+        .def_readonly("run", &CubeTestParams::run);
 
     py::class_<CurvePoint>(m, "CurvePoint")
         .def_readonly("step", &CurvePoint::step)
@@ -115,10 +115,10 @@ PYBIND11_MODULE(_core, m) {
            const std::vector<std::int32_t>& b) { return nodesJoined(lat, intact, a, b); },
         py::arg("lattice"), py::arg("intact"), py::arg("a"), py::arg("b"),
         "True if a chain of intact bars (intact[bar] != 0) joins a node of a to a node of b: Simulation.run's separation test");
-    py::class_<CurveCsvWriter>(m, "CurveCsvWriter")
-        .def(py::init<const std::string&>())
-        .def("write", &CurveCsvWriter::write)
-        .def_property_readonly_static("header", [](py::object) { return std::string(CurveCsvWriter::header()); });
+    // The law's damage states (HillerborgLaw.hpp), for outputs and pictures.
+    m.attr("UNDAMAGED") = int(DamageState::Undamaged);
+    m.attr("DAMAGED") = int(DamageState::Damaged);
+    m.attr("BROKEN") = int(DamageState::Broken);
 
     py::class_<Lattice>(m, "Lattice")
         .def_readonly("nx", &Lattice::nx)
@@ -171,6 +171,11 @@ PYBIND11_MODULE(_core, m) {
              }),
              py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("material"), py::arg("loading"),
              py::arg("run"))
+        .def(py::init([](const CubeTestParams& p) {
+                 py::gil_scoped_release release;
+                 return std::make_unique<Simulation>(p);
+             }),
+             py::arg("params"), "the cube test of params (ldem.CubeTest builds them)")
         .def(
             "run",
             [](Simulation& s, py::object callback) {
@@ -227,6 +232,15 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("kappa", [](const Simulation& s) { return toNumpy(s.bars().kappa); })
         .def_property_readonly("eps_r", [](const Simulation& s) { return toNumpy(s.bars().epsR); })
         .def_property_readonly("eps_p", [](const Simulation& s) { return s.bars().epsP; })
+        .def_property_readonly(
+            "damage_state",
+            [](const Simulation& s) {
+                const BarState& b = s.bars();
+                std::vector<std::uint8_t> st(b.kappa.size());
+                for (std::size_t i = 0; i < st.size(); ++i) st[i] = std::uint8_t(damageState(b.kappa[i], b.epsP, b.epsR[i]));
+                return toNumpy(st);
+            },
+            "per bar: UNDAMAGED (kappa <= eps_p), DAMAGED, or BROKEN (kappa >= eps_r)")
         .def_property_readonly("bar_strain", [](const Simulation& s) { return toNumpy(barStrains(s.lattice(), s.displacements())); })
         .def_property_readonly("displacement", [](const Simulation& s) {
             const Field3& u = s.displacements();

@@ -77,7 +77,8 @@ def run(name: str, threads: int, out: str, **override):
     """Runs case `name` into folder out (curve.csv and summary.json only)."""
     import ldem
 
-    return ldem.CubeTest(**{**CASES[name], **override}, threads=threads).run(out=out, progress=False, plots=False)
+    return ldem.run_cube(ldem.CubeTest(**{**CASES[name], **override}, threads=threads), out=out, progress=False,
+                         plots=False)
 
 
 def golden_paths(name: str):

@@ -8,17 +8,19 @@ import pytest
 from conftest import FAST, colour_share, picture
 
 BAD_INPUT = [
-    (["--size", "-0.12"], "cube size must be positive"),
+    (["--size", "-0.12"], "size must be > 0 (got -0.12 m)"),
     (["--size", "0.13"], "not a multiple of L0"),
     (["--nu", "0.5"], "nu must be in [0, 0.5)"),
     (["--nu", "0.7"], "nu must be in [0, 0.5)"),
-    (["--Gf-cv", "-0.1"], "CV of G_f must be >= 0"),
+    (["--Gf-cv", "-0.1"], "Gf_cv must be in [0, 10] (got -0.1)"),
     (["--load", "shear"], "invalid choice"),
     (["--Gf-draw", "cell"], "invalid choice"),
     (["--E", "abc"], "invalid float value"),
-    (["--L0", "0"], "L0 must be positive"),
+    (["--L0", "0"], "L0 must be > 0 (got 0 m)"),
     (["--dt", "1"], "stability limit"),
-    (["--strain-rate", "-1"], "strain rate must be positive"),
+    (["--strain-rate", "-1"], "strain_rate must be > 0 (got -1 1/s)"),
+    (["--dt-safety", "1.5"], "dt_safety must be in (0, 1] (got 1.5)"),
+    (["--seed", "-3"], "seed must be >= 0 (got -3)"),
 ]
 
 

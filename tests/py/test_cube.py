@@ -67,7 +67,7 @@ def test_instability_stops_with_step_and_keeps_rows(tmp_path):
     sim = test.simulation()
     sim.force_time_step(2.5 / sim.omega_max)  # above 2/omega_max: central differences diverge
     with pytest.raises(ldem.InstabilityError, match=r"numerical instability at step \d+") as err:
-        test.run(out=str(tmp_path), simulation=sim)
+        ldem.run_cube(test, out=str(tmp_path), simulation=sim)
     failed_step = int(str(err.value).split("at step ")[1].split()[0])
     # The records before the blow-up, complete and finite, every record_every steps
     # from 0; the failing record (the next one) is never written.
@@ -143,3 +143,56 @@ def test_fracture_energy_drawn_per_module_reaches_the_engine():
     assert len(np.unique(bar)) == len(bar)
     assert len(np.unique(module)) == 27
     assert module.mean() == pytest.approx(100, rel=0.6)
+
+
+def test_curve_csv_columns_carry_their_physics(tmp_path):
+    """curve.csv column by column, against the physics of the elastic branch:
+    with every bar below eps_p the cube is linear, so the elastic energy is
+    1/2 sigma eps V (sigma the mean stress, eps the mean strain, V the volume)
+    and the loading is quasi-static (kinetic energy a small fraction of it);
+    stresses in MPa, energies in J. The file equals the run's own arrays."""
+    r = ldem.run_cube(ldem.CubeTest(**FAST, seed=2, threads=1), out=str(tmp_path), plots=False)
+    csv = np.genfromtxt(tmp_path / "curve.csv", delimiter=",", names=True)
+    assert list(csv.dtype.names) == ldem.CURVE_COLUMNS
+    for c in ldem.CURVE_COLUMNS:
+        np.testing.assert_allclose(csv[c], r.curve[c], rtol=1e-9, atol=0, err_msg=c)
+    elastic = (csv["damaged_bars"] == 0) & (csv["mean_strain"] > 0.4 * r.sim.eps_p)
+    assert elastic.sum() >= 5
+    size = r.test.size
+    work = 0.5 * csv["stress_MPa"][elastic] * 1e6 * csv["mean_strain"][elastic] * size ** 3
+    np.testing.assert_allclose(csv["elastic_J"][elastic], work, rtol=2e-3)  # measured: 2e-4 to 5e-4
+    assert (csv["kinetic_J"][elastic] < 0.01 * csv["elastic_J"][elastic]).all()  # measured: below 0.002
+    assert csv["step"][0] == 0 and csv["kinetic_J"][0] == 0 and csv["external_work_J"][0] == 0
+    assert (np.diff(csv["time_s"]) > 0).all() and (np.diff(csv["broken_bars"]) >= 0).all()
+
+
+def test_cube_test_fields_are_the_parameter_table():
+    """One declaration (pkg/ldem/Parameters.hpp): CubeTest's fields, their types,
+    defaults, units and choices are the table's; the C++ struct holds what was set."""
+    import dataclasses
+
+    from ldem import _core
+
+    table = _core.parameter_table()
+    fields = dataclasses.fields(ldem.CubeTest)
+    assert [f.name for f in fields] == [p["name"] for p in table]
+    for f, p in zip(fields, table):
+        assert f.default == p["default"] and f.metadata["unit"] == p["unit"] and f.metadata["help"] == p["help"]
+        assert f.type is {"float": float, "int": int, "choice": str}[p["kind"]]
+        assert f.metadata.get("choices", ()) == tuple(p["choices"])
+    params = ldem.CubeTest(nu=0.3, load="triangular", seed=4, Gf_draw="module").params()
+    assert (params["nu"], params["load"], params["seed"], params["Gf_draw"]) == (0.3, "triangular", 4, "module")
+    assert params.material.nu == 0.3 and params.loading.load == "triangular" and params.run.seed == 4
+
+
+@pytest.mark.parametrize("kw,message", [
+    ({"E": "abc"}, "E must be a number (got 'abc')"),
+    ({"seed": 1.5}, "seed must be int (got 1.5)"),
+    ({"load": "shear"}, "unknown load 'shear' (expected uniform or triangular)"),
+    ({"nu": 0.5}, r"nu must be in [0, 0.5) (got 0.5)"),
+    ({"size": 0.13}, "cube size 0.13 m is not a multiple of L0 = 0.02 m"),
+])
+def test_bad_parameters_are_value_errors_naming_them(kw, message):
+    with pytest.raises(ValueError) as e:
+        ldem.CubeTest(**kw).params()
+    assert str(e.value) == message

@@ -325,7 +325,7 @@ def test_bars_vtu_fields_match_the_run(tmp_path):
     (kappa/eps_r), kappa, eps_r, strain, G_f, kind, and the node displacements'."""
     import meshio
 
-    r = ldem.CubeTest(**FAST, seed=2, threads=1).run(out=str(tmp_path))
+    r = ldem.run_cube(ldem.CubeTest(**FAST, seed=2, threads=1), out=str(tmp_path))
     sim, s = r.sim, r.summary
     mesh = meshio.read(tmp_path / "bars.vtu")
     assert sorted(mesh.cell_data) == sorted(["damage_state", "damage", "kappa", "eps_r", "strain", "G_f", "kind"])

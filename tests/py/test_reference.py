@@ -67,7 +67,7 @@ class Pair:
         for k, v in mat.items():
             setattr(m, k, v)
         lp = _core.LoadingParams()
-        lp.shape, lp.strain_rate, lp.top_lateral_free = load, strain_rate, top_lateral_free
+        lp.load, lp.strain_rate, lp.top_lateral = load, strain_rate, "free" if top_lateral_free else "fixed"
         rp = _core.RunParams()
         rp.seed, rp.zeta, rp.threads = seed, zeta, threads
         self.sim = _core.Simulation(nx, ny, nz, L0, m, lp, rp)

@@ -154,7 +154,7 @@ def test_size_effect_command_tables_and_report(tmp_path, cli):
 
 def test_study_bad_input_is_one_line(tmp_path, cli):
     r = cli("study", "size-effect", "--out", str(tmp_path), "--sizes", "0.12,-1")
-    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "positive" in r.stderr
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "size must be > 0 (got -1 m)" in r.stderr
     r = cli("study", "damping", "--out", str(tmp_path), "--loads", "shear")
     assert r.returncode == 2 and "unknown load 'shear'" in r.stderr
 

@@ -1,0 +1,58 @@
+// The parameters of a cube test, whole and by name: the table of every
+// parameter (from the lists of Parameters.hpp) and access by name, for the
+// Python bindings, ldem.CubeTest and its command line.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/Parameters.hpp"
+#include "ldem/RunParams.hpp"
+
+namespace ldem {
+
+struct CubeGeometry {
+    LDEM_GEOMETRY_PARAMETERS(LDEM_DECLARE_MEMBER)
+    // Modules along one side; throws unless size is a positive multiple of L0.
+    int modules() const;
+    void validate() const;
+};
+
+struct CubeTestParams {
+    CubeGeometry geometry;
+    Material material;
+    LoadingParams loading;
+    RunParams run;
+    void validate() const;
+};
+
+// A parameter's value: a number, a count, or the name of a choice.
+using ParamValue = std::variant<double, std::int64_t, std::string>;
+
+struct ParamInfo {
+    std::string group;  // geometry, material, loading or run
+    std::string name, unit, help;
+    std::string kind;   // "float", "int" or "choice"
+    Domain domain;
+    ParamValue defaultValue;
+};
+
+// Every parameter, in declaration order: geometry, material, loading, run.
+const std::vector<ParamInfo>& cubeTestParameters();
+
+// By name; an unknown name, a wrong type or an unknown choice throws
+// std::invalid_argument naming the parameter.
+ParamValue getParameter(const CubeTestParams& p, const std::string& name);
+void setParameter(CubeTestParams& p, const std::string& name, const ParamValue& v);
+// The same on one group's struct (its own names only).
+ParamValue getParameter(const Material& m, const std::string& name);
+void setParameter(Material& m, const std::string& name, const ParamValue& v);
+ParamValue getParameter(const LoadingParams& l, const std::string& name);
+void setParameter(LoadingParams& l, const std::string& name, const ParamValue& v);
+ParamValue getParameter(const RunParams& r, const std::string& name);
+void setParameter(RunParams& r, const std::string& name, const ParamValue& v);
+
+}  // namespace ldem

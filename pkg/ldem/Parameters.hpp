@@ -1,0 +1,115 @@
+// Every parameter of a cube test, declared once: its C++ member, its name (in
+// Python, on the command line, in summary.json and in a study's case keys), its
+// default, unit, domain and help. The structs Material, LoadingParams and
+// RunParams are generated from these lists (LDEM_DECLARE_MEMBER), so are their
+// validation (LDEM_CHECK_MEMBER) and the access by name behind the Python
+// bindings (CubeTest.hpp); ldem.CubeTest and `ldem cube --help` are generated
+// from the table the bindings export. The defaults are the study's
+// (LDEM_SPEC section 6, Table 2).
+//
+// Adding a parameter: one line in a list below, then its use.
+//
+// X(type, member, "name", default, "unit", domain, "help")
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#define LDEM_GEOMETRY_PARAMETERS(X)                                                                          \
+    X(double, size, "size", 0.12, "m", Domain::positive(), "side of the cube (a multiple of L0)")             \
+    X(double, L0, "L0", 0.02, "m", Domain::positive(), "side of a cubic module")
+
+/* nu >= 0.5 is incompressible and delta = 9nu/(4-8nu) blows up; nu < 0 makes
+   the diagonal area negative: the lattice cannot represent either. */
+#define LDEM_MATERIAL_PARAMETERS(X)                                                                          \
+    X(double, E, "E", 3.5e10, "Pa", Domain::positive(), "Young's modulus")                                     \
+    X(double, nu, "nu", 0.25, "", Domain::closedOpen(0, 0.5), "Poisson's ratio")                              \
+    X(double, rho, "rho", 2400.0, "kg/m^3", Domain::positive(), "density")                                     \
+    X(double, GfMean, "Gf_mean", 100.0, "N/m", Domain::positive(), "mean specific fracture energy E[G_f]")     \
+    X(double, GfCV, "Gf_cv", 1.0, "", Domain::closed(0, 10), "coefficient of variation of G_f (1 = 100%)")     \
+    X(double, corrLength, "corr_length", 0.0, "m", Domain::atLeast(0),                                         \
+      "correlation length of G_f (0: one draw per bar)")                                                      \
+    X(bool, GfPerModule, "Gf_draw", false, "", Domain::choices({"bar", "module"}),                             \
+      "G_f drawn per bar, or per module (the bars of a module alike)")                                         \
+    X(double, epsP, "eps_p", 6.3e-5, "", Domain::positive(), "critical strain of a bar (end of the elastic branch)") \
+    X(double, ca, "c_a", 0.1385, "", Domain::positive(), "fracture-area coefficient c_a")
+
+#define LDEM_LOADING_PARAMETERS(X)                                                                           \
+    X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),            \
+      "upper-face displacement: uniform or triangular")                                                        \
+    X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(), "vertical strain rate at the most-pulled edge") \
+    X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                             \
+      "smooth start of the loading (0: two fundamental periods)")                                              \
+    X(bool, topLateralFree, "top_lateral", true, "", Domain::choices({"fixed", "free"}),                       \
+      "lateral DOFs of the upper nodes: free or fixed")                                                        \
+    X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),                \
+      "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                             \
+    X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                       \
+      "drive velocity factor once the load is lost (reaches separation in fewer steps)")
+
+#define LDEM_RUN_PARAMETERS(X)                                                                               \
+    X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")     \
+    X(double, zeta, "zeta", 0.02, "", Domain::atLeast(0), "damping ratio on the fundamental mode (D_f = 2 zeta omega_1)") \
+    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss"}),         \
+      "the event that ends the run: separation (no chain of intact bars joins the faces) or load_loss")        \
+    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(), "stop at this mean strain if the event has not come") \
+    X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")               \
+    X(double, dtSafety, "dt_safety", 0.4, "", Domain::openClosed(0, 1),                                        \
+      "fraction of the stability limit 2/omega_max allowed (see Simulation.cpp)")                              \
+    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                               \
+      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")  \
+    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                       \
+      "averaging time of the load-loss test (0: two fundamental periods)")                                     \
+    X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                               \
+      "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")              \
+    X(int, recordEvery, "record_every", 0, "steps", Domain::atLeast(0),                                        \
+      "steps between curve rows (0: one per eps_p/50 of mean strain at the initial rate)")                     \
+    X(int, threads, "threads", 0, "", Domain::atLeast(0), "OpenMP threads (0: all cores)")
+
+// A struct member with its default.
+#define LDEM_DECLARE_MEMBER(type, member, name, def, unit, domain, help) type member = def;
+// Its check against its domain, inside the struct's validate().
+#define LDEM_CHECK_MEMBER(type, member, name, def, unit, domain, help) ::ldem::checkParameter(name, unit, member, domain);
+
+namespace ldem {
+
+// The values a parameter may take: an interval of numbers, or one of named
+// choices (a bool or an enum: the value is the index of its name).
+struct Domain {
+    double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+    bool loClosed = true, hiClosed = true;
+    std::vector<std::string> names;  // non-empty: a choice
+
+    static Domain positive() { return {0, std::numeric_limits<double>::infinity(), false, true, {}}; }
+    static Domain atLeast(double a) { return {a, std::numeric_limits<double>::infinity(), true, true, {}}; }
+    static Domain closed(double a, double b) { return {a, b, true, true, {}}; }
+    static Domain closedOpen(double a, double b) { return {a, b, true, false, {}}; }
+    static Domain openClosed(double a, double b) { return {a, b, false, true, {}}; }
+    static Domain choices(std::vector<std::string> n) { return {0, 0, true, true, std::move(n)}; }
+
+    bool isChoice() const { return !names.empty(); }
+    bool contains(double x) const {
+        return std::isfinite(x) && (loClosed ? x >= lo : x > lo) && (hiClosed ? x <= hi : x < hi);
+    }
+    // "> 0", ">= 1", "in [0, 0.5)", "one of bar, module"
+    std::string describe() const;
+};
+
+std::string formatNumber(double x);  // shortest form of 6 significant digits
+
+template <class T>
+void checkParameter(const char* name, const char* unit, const T& value, const Domain& d) {
+    if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
+        if (!d.contains(double(value)))
+            throw std::invalid_argument(std::string(name) + " must be " + d.describe() + " (got " +
+                                        formatNumber(double(value)) + (*unit ? std::string(" ") + unit : "") + ")");
+    }
+}
+
+}  // namespace ldem

@@ -1,0 +1,120 @@
+"""Files of a run: the output folder, curve.csv (row by row), summary.json and
+bars.vtu. Writers take data (rows, the summary dict, the final state); nothing
+here computes physics."""
+from __future__ import annotations
+
+import csv
+import json
+import os
+from typing import List, Sequence
+
+import numpy as np
+
+from .cube import CURVE_COLUMNS
+
+
+def prepare_dir(path: str) -> None:
+    """Creates the output folder and checks it is writable, before any computing."""
+    try:
+        os.makedirs(path, exist_ok=True)
+        probe = os.path.join(path, ".ldem-write-test")
+        with open(probe, "w"):
+            pass
+        os.remove(probe)
+    except OSError as e:
+        raise ValueError(f"cannot write to output folder {path}: {e.strerror}") from None
+
+
+def _cell(v) -> str:
+    """Ten significant digits, as C's %.10g; counts as integers."""
+    return str(v) if isinstance(v, int) else format(v, ".10g")
+
+
+class CurveCsv:
+    """curve.csv, a row per record, flushed as it is written so that a run that
+    fails or is interrupted keeps every row up to that point. An observer of
+    CubeTest.run."""
+
+    def __init__(self, path: str):
+        self._f = open(path, "w")
+        self._f.write(",".join(CURVE_COLUMNS) + "\n")
+        self._f.flush()
+
+    def __call__(self, row: dict) -> None:
+        self._f.write(",".join(_cell(row[c]) for c in CURVE_COLUMNS) + "\n")
+        self._f.flush()
+
+    def close(self) -> None:
+        self._f.close()
+
+
+def write_summary(summary: dict, path: str) -> None:
+    with open(path, "w") as f:
+        json.dump(summary, f, indent=2)
+        f.write("\n")
+
+
+def write_vtu(sim, path: str) -> None:
+    """Every bar as a VTK line cell with its damage state and kappa/eps_r (ParaView)."""
+    import meshio
+
+    lat = sim.lattice
+    u = sim.displacement
+    bars = lat.bar_table()
+    points = np.column_stack([lat.x0, lat.y0, lat.z0]) + u
+    kappa, eps_r = sim.kappa, sim.eps_r
+    cells = [("line", np.column_stack([bars["n1"], bars["n2"]]).astype(np.int64))]
+    mesh = meshio.Mesh(
+        points, cells,
+        point_data={"displacement": u},
+        cell_data={
+            "damage_state": [sim.damage_state.astype(np.int32)],
+            "damage": [np.minimum(kappa / eps_r, 1.0)],
+            "kappa": [kappa],
+            "eps_r": [eps_r],
+            "strain": [sim.bar_strain],
+            "G_f": [sim.fracture_energy_field],
+            "kind": [bars["kind"].astype(np.int32)],
+        })
+    meshio.write(path, mesh, file_format="vtu")
+
+
+def write_slice(path: str, segments, states) -> None:
+    """The central slice of a run (plots.central_slice), for study figures."""
+    np.savez_compressed(path, segments=np.asarray(segments, dtype=np.float32), states=states)
+
+
+def read_slice(path: str) -> tuple:
+    with np.load(path) as z:
+        return z["segments"], z["states"]
+
+
+def read_summary(path: str) -> dict:
+    with open(path) as f:
+        return json.load(f)
+
+
+def read_curve(path: str) -> dict:
+    data = np.genfromtxt(path, delimiter=",", names=True)
+    return {k: np.atleast_1d(data[k]) for k in data.dtype.names}
+
+
+def write_table(path: str, rows: Sequence[dict], columns: Sequence[str]) -> None:
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(columns), extrasaction="ignore")
+        w.writeheader()
+        for r in rows:
+            w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+
+
+def read_table(path: str) -> List[dict]:
+    def conv(v):
+        try:
+            return int(v)
+        except ValueError:
+            try:
+                return float(v)
+            except ValueError:
+                return v
+    with open(path, newline="") as f:
+        return [{k: conv(v) for k, v in r.items()} for r in csv.DictReader(f)]

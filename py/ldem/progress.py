@@ -1,0 +1,50 @@
+"""Progress on a terminal: a bar over the mean strain for one run, a bar over
+cases for a study. Silent off a terminal."""
+from __future__ import annotations
+
+import sys
+
+
+def _enabled(enabled) -> bool:
+    return sys.stderr.isatty() if enabled is None else bool(enabled)
+
+
+class ProgressBar:
+    """A tqdm bar over the mean strain, with stress and peak: an observer of CubeTest.run."""
+
+    def __init__(self, final_strain: float, enabled=None):
+        self._bar, self._peak, self._final = None, 0.0, final_strain
+        if _enabled(enabled):
+            from tqdm import tqdm
+            self._bar = tqdm(total=1000, unit="‰", desc="strain", file=sys.stderr,
+                             bar_format="{desc}: {percentage:3.0f}%|{bar}| {postfix} [{elapsed}<{remaining}]")
+
+    def __call__(self, row: dict) -> None:
+        if self._bar is None:
+            return
+        self._peak = max(self._peak, row["stress_MPa"])
+        self._bar.n = min(1000, int(1000 * row["mean_strain"] / self._final))
+        self._bar.set_postfix_str(f"eps={row['mean_strain']:.3e} sigma={row['stress_MPa']:.3f} MPa "
+                                  f"peak={self._peak:.3f} MPa broken={row['broken_bars']}", refresh=True)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()
+
+
+class CaseProgress:
+    """Overall progress over the cases of a study."""
+
+    def __init__(self, total: int, done: int, enabled=None):
+        self._bar = None
+        if _enabled(enabled):
+            from tqdm import tqdm
+            self._bar = tqdm(total=total, initial=done, unit="case", desc="study", file=sys.stderr)
+
+    def step(self) -> None:
+        if self._bar is not None:
+            self._bar.update(1)
+
+    def close(self) -> None:
+        if self._bar is not None:
+            self._bar.close()

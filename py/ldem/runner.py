@@ -1,0 +1,54 @@
+"""A run with its files: the wiring of CubeTest.run to the writers, the
+progress bar and the pictures (used by `ldem cube`, the studies and scripts).
+
+    import ldem
+    result = ldem.run_cube(ldem.CubeTest(size=0.24), out="out/t024")
+"""
+from __future__ import annotations
+
+import os
+from typing import Optional
+
+from . import io
+from .cube import CubeResult, CubeTest
+from .progress import ProgressBar
+
+
+def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
+             simulation=None) -> CubeResult:
+    """Runs test; with out, writes curve.csv (row by row), summary.json (also
+    when the run fails or is interrupted: status says so) and, with plots,
+    curve.png, energies.png, cracks.png and bars.vtu. progress: a bar on stderr
+    (default: when stderr is a terminal)."""
+    if out is not None:
+        io.prepare_dir(out)
+    bar = ProgressBar(test.final_strain, enabled=progress)
+    csv = io.CurveCsv(os.path.join(out, "curve.csv")) if out is not None else None
+    observers = [o for o in (csv, bar) if o is not None]
+    try:
+        result = test.run(observers, simulation=simulation)
+    except BaseException as e:
+        partial = getattr(e, "ldem_result", None)
+        if out is not None and partial is not None:
+            io.write_summary(partial.summary, os.path.join(out, "summary.json"))
+        raise
+    finally:
+        bar.close()
+        if csv is not None:
+            csv.close()
+    if out is not None:
+        io.write_summary(result.summary, os.path.join(out, "summary.json"))
+        if plots:
+            write_pictures(result, out)
+    return result
+
+
+def write_pictures(result: CubeResult, out: str) -> None:
+    from . import plots
+
+    plots.curve_figure(result, os.path.join(out, "curve.png"))
+    plots.energy_figure(result, os.path.join(out, "energies.png"))
+    plots.crack_figure(result.sim, os.path.join(out, "cracks.png"),
+                       title=f"{result.test.size:g} m cube, {result.test.load}, seed {result.test.seed}: "
+                             f"mean strain {result.curve['mean_strain'][-1]:.2e}")
+    io.write_vtu(result.sim, os.path.join(out, "bars.vtu"))

@@ -1,0 +1,25 @@
+"""Studies: many cube tests (size x seed x load, or one parameter swept), run
+in parallel processes or on a dask.distributed cluster, resumable, aggregated
+into the tables of the reference study (LDEM_SPEC section 6).
+
+    ldem study size-effect --out DIR [--sizes 0.12,0.24] [--seeds 6] [--loads uniform,triangular] [--jobs J]
+    ldem study damping     --out DIR [--size 0.96] [--zetas 0.02,2]
+
+Modules, each importing only those listed before it:
+  cases        case names and folders, what is finished, one case run into its folder
+  tables       one row per case, aggregation per (load, size), the fractal fit
+  executors    running the unfinished cases: in turn, in processes, on dask
+  size_effect  the size-effect study: runs, tables, fractal.json, report
+  damping      the damping study
+  command      the `ldem study` command line
+"""
+from ..io import read_table as read_csv, write_table as write_csv  # noqa: F401
+from .cases import (case_dir, case_name, damping_tests, is_finished, load_case, load_curve, load_curves,  # noqa: F401
+                    load_summary, run_case, size_effect_tests)
+from .executors import run_cases  # noqa: F401
+from .size_effect import STUDY_SIZES, run_size_effect  # noqa: F401
+from .damping import run_damping  # noqa: F401
+from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
+                     fit_fractal, fractal_fits, mean_cv)
+from ..curves import mean_curve, mean_curve_peak  # noqa: F401
+from .command import add_parser  # noqa: F401

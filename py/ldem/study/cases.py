@@ -1,0 +1,107 @@
+"""The cases of a study and their folders: naming, what counts as finished,
+running one case into its folder, and reading its files back.
+
+Layout of a study folder DIR: one folder per case, DIR/cases/<name>/
+(curve.csv, summary.json, cracks.png, slice.npz). A case is finished when its
+summary.json says "done" for the same parameters and slice.npz (written last)
+exists; any other case folder (interrupted, failed, other parameters) is
+computed again from scratch."""
+from __future__ import annotations
+
+import dataclasses
+import os
+import shutil
+from typing import Dict, Iterable, List, Sequence
+
+from .. import io
+from ..cube import CubeTest
+
+
+def case_name(test: CubeTest) -> str:
+    """load_size_seed, then every parameter that differs from CubeTest's defaults
+    (threads aside: they do not change the result)."""
+    name = f"{test.load}_{test.size:g}m_s{test.seed}"
+    default = CubeTest()
+    for f in dataclasses.fields(CubeTest):
+        if f.name in ("load", "size", "seed", "threads"):
+            continue
+        v = getattr(test, f.name)
+        if v != getattr(default, f.name):
+            name += f"_{f.name}{v:g}" if isinstance(v, float) else f"_{f.name}{v}"
+    return name
+
+
+def case_dir(out: str, test: CubeTest) -> str:
+    """Where a study in directory out keeps the case of test."""
+    return os.path.join(out, "cases", case_name(test))
+
+
+def _comparable(params: dict) -> dict:
+    """The parameters that decide a case's result; one declared after the case
+    ran counts at its default (the run it would have made is the same)."""
+    defaults = {f.name: f.default for f in dataclasses.fields(CubeTest)}
+    return {k: params.get(k, d) for k, d in defaults.items() if k != "threads"}
+
+
+def is_finished(case_dir: str, test: CubeTest) -> bool:
+    try:
+        s = io.read_summary(os.path.join(case_dir, "summary.json"))
+    except (OSError, ValueError):
+        return False
+    return (s.get("status") == "done" and _comparable(s.get("parameters", {})) == _comparable(test.parameters())
+            and os.path.exists(os.path.join(case_dir, "slice.npz")))
+
+
+def run_case(params: dict, case_dir: str) -> dict:
+    """Runs one case into case_dir (emptied first) and returns its summary.
+    A top-level function, so that worker processes and dask can call it."""
+    from .. import plots  # matplotlib only where pictures are drawn: `ldem cube` starts faster
+    from ..runner import run_cube
+
+    if os.path.isdir(case_dir):
+        shutil.rmtree(case_dir)  # half-finished or stale: start afresh
+    test = CubeTest(**params)
+    result = run_cube(test, out=case_dir, progress=False, plots=False)
+    seg, state = plots.central_slice(result.sim)
+    # Written last: its presence marks the case finished (with summary.json "done").
+    io.write_slice(os.path.join(case_dir, "slice.npz"), seg, state)
+    plots.crack_figure_from_slice(seg, state, os.path.join(case_dir, "cracks.png"),
+                                  title=f"{test.size:g} m, {test.load}, seed {test.seed}")
+    return result.summary
+
+
+def size_effect_tests(sizes: Iterable[float], seeds: int, loads: Iterable[str], **common) -> List[CubeTest]:
+    return [CubeTest(size=s, load=ld, seed=k, **common) for ld in loads for s in sizes for k in range(1, seeds + 1)]
+
+
+def damping_tests(size: float, zetas: Iterable[float], loads: Iterable[str], seed: int = 1,
+                  **common) -> List[CubeTest]:
+    return [CubeTest(size=size, load=ld, seed=seed, zeta=z, **common) for ld in loads for z in zetas]
+
+
+def load_summary(case_dir: str) -> dict:
+    return io.read_summary(os.path.join(case_dir, "summary.json"))
+
+
+def load_curve(case_dir: str) -> dict:
+    return io.read_curve(os.path.join(case_dir, "curve.csv"))
+
+
+def load_slice(case_dir: str) -> tuple:
+    return io.read_slice(os.path.join(case_dir, "slice.npz"))
+
+
+def load_curves(out: str, tests: Sequence[CubeTest]) -> Dict[tuple, List[dict]]:
+    """(load, size) -> the curves of its specimens in study directory out, in test order."""
+    groups: Dict[tuple, List[dict]] = {}
+    for t in tests:
+        groups.setdefault((t.load, t.size), []).append(load_curve(case_dir(out, t)))
+    return groups
+
+
+def load_case(out: str, test: CubeTest):
+    """The finished case of test in study folder out, as ldem.report.Case."""
+    from ..report import Case
+
+    d = case_dir(out, test)
+    return Case(test, load_summary(d), load_curve(d), load_slice(d))

@@ -1,0 +1,76 @@
+"""Running the cases of a study: one after the other, in worker processes, or
+on a dask.distributed cluster; finished cases are never recomputed."""
+from __future__ import annotations
+
+import os
+from typing import Callable, List, Optional, Sequence
+
+from .. import io
+from ..cube import CubeTest
+from ..progress import CaseProgress
+from .cases import case_dir, case_name, is_finished, load_summary, run_case
+
+
+def default_threads(jobs: int) -> int:
+    return max(1, (os.cpu_count() or 1) // max(1, jobs))
+
+
+def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
+              progress: Optional[bool] = None, log: Callable[[str], None] = print) -> List[dict]:
+    """Runs every test not finished yet (in `jobs` processes, or on the dask
+    cluster at `scheduler`) and returns the summaries of all, in order."""
+    if jobs < 1:
+        raise ValueError(f"--jobs must be at least 1 (got {jobs})")
+    io.prepare_dir(out)
+    dirs = [case_dir(out, t) for t in tests]
+    if len(set(dirs)) != len(dirs):
+        raise ValueError("two cases of the study have the same parameters")
+    todo = [i for i, (t, d) in enumerate(zip(tests, dirs)) if not is_finished(d, t)]
+    if len(todo) < len(tests):
+        log(f"{len(tests) - len(todo)} of {len(tests)} cases already finished in {out}/cases")
+    bar = CaseProgress(len(tests), len(tests) - len(todo), progress)
+    args = [(tests[i].parameters(), dirs[i]) for i in todo]
+
+    def finished(i, summary):
+        bar.step()
+        log(f"  {case_name(tests[i])}: peak {summary['peak_stress_MPa']:.4f} MPa at {summary['strain_at_peak']:.4e}, "
+            + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("separated") else "NOT separated")
+            + (", ENERGY ERROR" if summary.get("energy_error") else "") + f", {summary['wall_s']:.1f} s")
+
+    try:
+        if scheduler:
+            _run_on_dask(scheduler, todo, args, finished)
+        elif jobs == 1 or len(todo) <= 1:
+            for i, (p, d) in zip(todo, args):
+                finished(i, run_case(p, d))
+        else:
+            _run_in_processes(jobs, todo, args, finished)
+    finally:
+        bar.close()
+    return [load_summary(d) for d in dirs]
+
+
+def _run_in_processes(jobs, todo, args, finished):
+    import concurrent.futures as cf
+    import multiprocessing
+
+    # spawn, not fork: a forked OpenMP runtime can hang in the child.
+    with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
+        futures = {pool.submit(run_case, p, d): i for i, (p, d) in zip(todo, args)}
+        try:
+            for fut in cf.as_completed(futures):
+                finished(futures[fut], fut.result())
+        except BaseException:
+            for fut in futures:
+                fut.cancel()
+            raise
+
+
+def _run_on_dask(address, todo, args, finished):
+    from distributed import Client, as_completed
+
+    with Client(address) as client:
+        futures = [client.submit(run_case, p, d, pure=False) for p, d in args]
+        index = {f.key: i for f, i in zip(futures, todo)}
+        for fut in as_completed(futures):
+            finished(index[fut.key], fut.result())

@@ -1,0 +1,192 @@
+"""An ldem Simulation rebuilt in YADE's O (CubeSpecimen) and run to
+separation by Simulation::run's rules (see ldem.yade)."""
+import math
+
+import numpy as np
+
+from .. import _core
+from .scene import (SEPARATION_CHECK, CpmBars, RuptureGuard, _ramp_integral, _register, _yade, add_node, bar_material,
+                    drive_mul_add, make_engines)
+
+
+def cube_constraints(sim):
+    """ldem's prescribed DOFs (Simulation.prescribed_dofs) in YADE's terms: per
+    node a blockedDOFs string (translations), and the drive weight of each upper node."""
+    dofs = sim.prescribed_dofs()
+    held = [""] * sim.lattice.n_nodes
+    weight = {}
+    for n, d, w in zip(dofs["node"], dofs["dim"], dofs["weight"]):
+        held[int(n)] += "xyz"[int(d)]
+        if d == 2:
+            weight[int(n)] = float(w)
+    return held, np.array([weight[int(n)] for n in sim.top_nodes])
+
+
+def _event(step, time, mean_strain, fracture):
+    """An event of the run, with the keys of ldem cube's summary.json."""
+    return {"step": int(step), "time_s": float(time), "mean_strain": float(mean_strain),
+            "fracture_energy_J": float(fracture)}
+
+
+class CubeSpecimen:
+    """The ldem specimen ``sim`` (an ldem._core.Simulation) rebuilt in YADE's O:
+    same nodes, masses, bars, per-bar eps_r (from the same seed, read from
+    sim.eps_r), boundary conditions, drive U(t) (with its speed-up after the load
+    loss), dt and record steps."""
+
+    def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
+        if sim.steps != 0:
+            raise ValueError("CubeSpecimen needs an ldem Simulation that has not run yet (its initial state)")
+        y = _yade()
+        O = self.O = y["O"]
+        if reset:
+            O.reset()
+        lat = sim.lattice
+        self.sim = sim
+        self.height, self.face_area = sim.height, sim.face_area
+        self.dt = sim.dt
+        self.radius = radius_factor * lat.L0
+        held, self.top_weights = cube_constraints(sim)
+        self.mean_top_weight = sum(float(w) for w in self.top_weights) / len(self.top_weights)  # ldem's order
+        self.bottom = [int(n) for n in sim.bottom_nodes]
+        self.top = [int(n) for n in sim.top_nodes]
+        # ldem's Drive: v0, ramp, and the speed-up from the load loss on (never, until then)
+        self.v0 = sim.loading.strain_rate * sim.height
+        self.speedup = sim.loading.loss_speedup
+        self.ramp_time = sim.ramp_time
+        self.speedup_start = math.inf
+        self._mul_add = drive_mul_add(sim)
+        self.record_every = sim.record_every
+
+        self._name = _register(name, self)
+        O.engines = make_engines(
+            damping=damping,
+            before_forces=[y["PyRunner"](command=self._name + "._before_forces()", iterPeriod=1, initRun=True,
+                                         label="ldem_drive_guard")],
+            after_forces=[y["PyRunner"](command=self._name + "._after_forces()", iterPeriod=1, initRun=True,
+                                        label="ldem_recorder")])
+        O.dt = self.dt
+        mat = O.materials.append(bar_material(sim.eps_p))
+        x0, y0, z0, mass = (np.asarray(a) for a in (lat.x0, lat.y0, lat.z0, lat.mass))
+        for n in range(lat.n_nodes):
+            bid = add_node((x0[n], y0[n], z0[n]), mass[n], self.radius, mat, held[n])
+            assert bid == n
+        self.z0_top = z0[self.top]
+        self.z0_top_mean = float(np.mean(self.z0_top))
+        table = lat.bar_table()
+        self.bars = CpmBars(table["n1"], table["n2"], table["EA"], table["length"], sim.eps_p, sim.eps_r, self.radius)
+        self.states = [b.state for b in O.bodies]
+        self.top_states = [self.states[n] for n in self.top]
+        self.guard = RuptureGuard(self.bars, self.states)
+        self.curve = []  # (step, time, mean_strain, stress_bottom, stress_top, damaged, broken)
+        self.peak_stress, self.strain_at_peak = 0.0, 0.0
+        self.stop_reason = ""
+        self.final_strain, self.callback, self.stop_at = math.inf, None, "separation"
+        self.load_loss = self.separation = None
+        self.separation_checks = 0
+        self._last_check = -SEPARATION_CHECK
+        self.split = _core.LoadLossDetector(sim.split_window, 0.01)
+
+    def drive(self, t):
+        """U(t) [m], pkg/ldem/Loading.cpp's Drive::displacement with the same
+        roundings: sim's U(t) (never sped up, sim has not run), plus
+        (speedup - 1) v0 rampIntegral(t - t_loss) once the load is lost."""
+        U = self.sim.drive_displacement(t)
+        if t <= self.speedup_start:
+            return U
+        fma = self._mul_add
+        return fma((self.speedup - 1) * self.v0, _ramp_integral(t - self.speedup_start, self.ramp_time, fma), U)
+
+    def faces_joined(self):
+        """Some chain of intact bars (kappa < eps_r) joins the upper and lower
+        faces: ldem's own test (_core.nodes_joined), on YADE's bar states."""
+        self.separation_checks += 1
+        return _core.nodes_joined(self.sim.lattice, self.guard.intact(), self.top, self.bottom)
+
+    # -- engines -------------------------------------------------------------
+    def _before_forces(self):
+        O = self.O
+        t, dt = O.time, O.dt
+        U, Unext = self.drive(t), self.drive(t + dt)
+        for s, z0, w in zip(self.top_states, self.z0_top, self.top_weights):
+            p, v = s.pos, s.vel
+            s.pos = type(p)(p[0], p[1], z0 + w * U)
+            s.vel = type(v)(v[0], v[1], w * (Unext - U) / dt)
+        self.guard()
+
+    def _after_forces(self):
+        O = self.O
+        if not self.bars.finished:
+            self.bars.finish_first_step()
+        fz_bottom = sum(O.forces.f(n)[2] for n in self.bottom)
+        fz_top = sum(O.forces.f(n)[2] for n in self.top)
+        disp = sum(s.pos[2] for s in self.top_states) / len(self.top) - self.z0_top_mean
+        strain = disp / self.height
+        stress = fz_bottom / self.face_area
+        damaged, broken = self.guard.counts()
+        self.curve.append((O.iter, O.time, strain, stress, -fz_top / self.face_area, damaged, broken))
+        if stress > self.peak_stress:
+            self.peak_stress, self.strain_at_peak = stress, strain
+        keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
+        if O.iter % self.record_every == 0:  # ldem's record steps: its events and stops come only there
+            self._events(stress, broken)
+        if not self.stop_reason and not keep:
+            self.stop_reason = "stopped"
+        if self.stop_reason:
+            O.pause()
+
+    def _events(self, stress, broken):
+        """Simulation::run's tests at a record step, in its order."""
+        O = self.O
+        n, t = O.iter, O.time
+        mean_strain = self.drive(t) * self.mean_top_weight / self.height  # ldem's meanStrainAt(t)
+        if self.load_loss is None and self.split.update(t, stress, self.peak_stress, broken):
+            self.load_loss = _event(n, t, mean_strain, self.guard.fracture_energy())
+            self.speedup_start = t  # U(t_n) unchanged; from t_n+1 on, faster
+        if broken > 0 and stress < 0.5 * self.peak_stress and n - self._last_check >= SEPARATION_CHECK:
+            self._last_check = n
+            if not self.faces_joined():
+                self.separation = _event(n, t, mean_strain, self.guard.fracture_energy())
+        if self.separation is not None:
+            self.stop_reason = "separated"
+        elif self.stop_at == "load_loss" and self.load_loss is not None:
+            self.stop_reason = "load_lost"
+        elif mean_strain >= self.final_strain:
+            self.stop_reason = "final_strain"
+
+    # -- run -----------------------------------------------------------------
+    def run(self, final_strain=None, stop_fraction=None, stop_at="separation", max_steps=None, callback=None):
+        """Runs as ldem's Simulation.run: until separation (no chain of intact bars
+        joins the faces; the drive sped up by loss_speedup from the load loss on),
+        or with stop_at="load_loss" until the load-loss test (_core.LoadLossDetector:
+        stress averaged over the split window < stop_fraction x peak, after bars
+        broke), or until the mean strain reaches final_strain, or callback(row)
+        returns False. final_strain and stop_fraction default to ldem's RunParams.
+        Returns a dict with peak_stress [Pa], strain_at_peak, steps (the step of
+        the last row, as ldem's summary.steps), stop_reason ("separated",
+        "load_lost", "final_strain", "stopped" or "max_steps"), load_loss and
+        separation (None, or dict step, time_s, mean_strain, fracture_energy_J,
+        as in ldem's summary.json), fracture_energy_J (at the end),
+        separation_checks, curve (numpy array of step, time, mean_strain,
+        stress_bottom, stress_top, damaged, broken: every step), guard_early,
+        lost_bars."""
+        if stop_at not in ("separation", "load_loss"):
+            raise ValueError(f"unknown stop event '{stop_at}' (expected separation or load_loss)")
+        defaults = _core.RunParams()
+        final_strain = defaults.final_strain if final_strain is None else final_strain
+        stop_fraction = defaults.stop_fraction if stop_fraction is None else stop_fraction
+        self.final_strain, self.callback, self.stop_at = final_strain, callback, stop_at
+        self.split = _core.LoadLossDetector(self.sim.split_window, stop_fraction)
+        self.stop_reason = ""
+        if max_steps is None:  # time to the final strain + ramp at the initial rate (no speed-up), with margin
+            t_final = final_strain * self.height / (self.v0 * self.mean_top_weight) + 0.5 * self.ramp_time
+            max_steps = int(1.2 * t_final / self.dt) + 10
+        self.O.run(int(max_steps), True)
+        if not self.stop_reason:
+            self.stop_reason = "max_steps"
+        steps = int(self.curve[-1][0]) if self.curve else 0
+        return dict(peak_stress=self.peak_stress, strain_at_peak=self.strain_at_peak, steps=steps,
+                    stop_reason=self.stop_reason, load_loss=self.load_loss, separation=self.separation,
+                    fracture_energy_J=self.guard.fracture_energy(), separation_checks=self.separation_checks,
+                    curve=np.array(self.curve), guard_early=list(self.guard.early),
+                    lost_bars=self.bars.check_alive())

@@ -1,0 +1,149 @@
+"""The package's shape (README, Architecture): layers import downwards only,
+no import cycles (module-level or inside functions), no module over 300 lines
+without the reason at its top. Read from the source with ast, nothing imported."""
+import ast
+import os
+
+from conftest import ROOT
+
+PACKAGE = os.path.join(ROOT, "py", "ldem")
+# Lower layers first; a module may import its own layer or those below, never above.
+LAYERS = [
+    {"ldem._core"},
+    {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.yade"},            # specimen and run
+    {"ldem.io", "ldem.progress", "ldem.plots", "ldem.report"},         # writers, pictures, reports
+    {"ldem.runner"},                                                   # a run wired to its files
+    {"ldem.study"},                                                    # ldem.study.* included
+    {"ldem.cli", "ldem.scene"},                                        # the edges: command line, scene scripts
+]
+FACADES = {"ldem", "ldem.__main__"}  # the package's front doors re-export from every layer
+MAX_LINES = 300
+
+
+def _modules(package=PACKAGE):
+    for folder, _, files in os.walk(package):
+        for f in files:
+            if f.endswith(".py"):
+                path = os.path.join(folder, f)
+                rel = os.path.relpath(path, os.path.dirname(package))[:-3].replace(os.sep, ".")
+                yield (rel[: -len(".__init__")] if rel.endswith(".__init__") else rel), path
+
+
+def _imports(name, path):
+    """Every ldem module that module `name` imports, anywhere in its body."""
+    package = name if path.endswith("__init__.py") else name.rpartition(".")[0]
+    out = set()
+    for node in ast.walk(ast.parse(open(path).read())):
+        if isinstance(node, ast.Import):
+            out |= {a.name for a in node.names if a.name.split(".")[0] == "ldem"}
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")
+                base = base[: len(base) - node.level + 1]
+                mod = ".".join(base + ([node.module] if node.module else []))
+            else:
+                mod = node.module or ""
+            if mod.split(".")[0] != "ldem":
+                continue
+            out.add(mod)
+            out |= {f"{mod}.{a.name}" for a in node.names}  # `from . import io` names a module
+    return out
+
+
+def _graph(package=PACKAGE):
+    mods = dict(_modules(package))
+    graph = {}
+    for name, path in mods.items():
+        graph[name] = {m for m in _imports(name, path) if m in mods or m == "ldem._core"} - {name}
+    return mods, graph
+
+
+def _layer(mod):
+    for i, layer in enumerate(LAYERS):
+        if mod in layer or any(mod.startswith(top + ".") for top in layer):
+            return i
+    raise AssertionError(f"{mod} is in no layer of tests/py/test_architecture.py: place it")
+
+
+def _upward_imports(graph):
+    wrong = []
+    for mod, deps in graph.items():
+        if mod in FACADES:
+            continue
+        for dep in deps - FACADES:
+            if _layer(dep) > _layer(mod):
+                wrong.append(f"{mod} (layer {_layer(mod)}) imports {dep} (layer {_layer(dep)})")
+    return wrong
+
+
+def _cycles(graph):
+    """Tarjan's strongly connected components: one of more than one module is a cycle."""
+    graph = {m: d - FACADES for m, d in graph.items() if m not in FACADES}
+    index, low, stack, on, cycles, counter = {}, {}, [], set(), [], [0]
+
+    def visit(v):
+        index[v] = low[v] = counter[0]
+        counter[0] += 1
+        stack.append(v), on.add(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                cycles.append(sorted(comp))
+
+    for v in list(graph):
+        if v not in index:
+            visit(v)
+    return cycles
+
+
+def test_every_module_has_a_layer_and_imports_only_downwards():
+    mods, graph = _graph()
+    assert {"ldem.study.cases", "ldem.cube", "ldem.yade.cube", "ldem.runner"} <= set(mods), sorted(mods)
+    wrong = _upward_imports(graph)
+    assert not wrong, "upward imports:\n" + "\n".join(wrong)
+
+
+def test_no_import_cycles():
+    _, graph = _graph()
+    assert not _cycles(graph), f"import cycles: {_cycles(graph)}"
+
+
+def test_the_checks_see_a_cycle_and_an_upward_import(tmp_path):
+    """The checks on a made-up package whose cube imports runner inside a
+    function (upward) and runner imports cube: both are found."""
+    pkg = tmp_path / "ldem"
+    (pkg / "study").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("from .cube import CubeTest\n")
+    (pkg / "cube.py").write_text("def run():\n    from .runner import run_cube\n")
+    (pkg / "runner.py").write_text("from . import io\nfrom .cube import CubeTest\n")
+    (pkg / "io.py").write_text("import os\n")
+    (pkg / "study" / "__init__.py").write_text("from ..io import x\nfrom .cases import y\n")
+    (pkg / "study" / "cases.py").write_text("import ldem.cube\n")
+    _, graph = _graph(str(pkg))
+    assert graph["ldem.study"] == {"ldem.io", "ldem.study.cases"} and graph["ldem.study.cases"] == {"ldem.cube"}
+    assert _upward_imports(graph) == ["ldem.cube (layer 1) imports ldem.runner (layer 3)"]
+    assert _cycles(graph) == [["ldem.cube", "ldem.runner"]]
+
+
+def test_no_long_module_without_its_reason():
+    long = []
+    for name, path in _modules():
+        text = open(path).read()
+        n = text.count("\n")
+        doc = ast.get_docstring(ast.parse(text)) or ""
+        if n > MAX_LINES and "Longer than 300 lines:" not in doc:
+            long.append(f"{name}: {n} lines")
+    assert not long, "modules over 300 lines with no 'Longer than 300 lines: <reason>' in their docstring: " + \
+        ", ".join(long)
