@@ -1,9 +1,9 @@
-// Boundary conditions of the cube tests (LDEM_SPEC section 6): lower face
-// fixed, upper face pulled vertically by a displacement that grows smoothly
-// from rest, uniform or triangular across the face.
+// The loading of the cube tests (LDEM_SPEC section 6): its parameters and the
+// drive, a displacement that grows smoothly from rest (the specimen says which
+// DOFs follow it and with which weights, Specimen.hpp).
 //
 // Every prescribed degree of freedom follows u = weight * U(t), with U(t) the
-// displacement of the most-pulled point of the upper face:
+// displacement of the most-pulled point:
 //   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2   for t < t_r  (velocity ramps
 //          v0 (t - t_r / 2)                        for t >= t_r  up as 1 - cos)
 // so velocity and acceleration start at zero. v0 = strain rate x height.
@@ -38,19 +38,5 @@ struct Drive {
     double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
     double displacement(double t) const;
 };
-
-struct Constraints {
-    std::vector<std::uint8_t> mask;  // per node: bit d set if DOF d is prescribed
-    // Prescribed DOFs: u[node][dim] = weight * U(t).
-    std::vector<std::int32_t> node;
-    std::vector<std::uint8_t> dim;
-    std::vector<double> weight;
-    std::vector<std::int32_t> bottomNodes, topNodes;
-    double meanTopWeight = 0;  // mean weight of the upper face's vertical DOFs
-    double faceArea = 0;       // area of the loaded faces [m^2]
-    double height = 0;         // specimen height [m]
-};
-
-Constraints cubeTestConstraints(const Lattice& lat, const LoadingParams& p);
 
 }  // namespace ldem

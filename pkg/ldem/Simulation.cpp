@@ -24,15 +24,23 @@ Simulation::Simulation(const CubeTestParams& p)
 
 Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
                        const RunParams& run)
+    : Simulation(cubeTestSpecimen(nx, ny, nz, L0, m, load), m, load, run) {}
+
+Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run)
     : mat_(m), load_(load), run_(run) {
     mat_.validate();
     load_.validate();
     run_.validate();
     setThreads(run_.threads);
-    lat_ = buildCubicLattice(nx, ny, nz, L0, mat_);
-    con_ = cubeTestConstraints(lat_, load_);
+    lat_ = std::move(specimen.lattice);
+    pre_ = std::move(specimen.prescribed);
+    meas_ = specimen.measures;
+    groups_ = std::move(specimen.groups);
+    for (const std::string& g : {meas_.support, meas_.loaded})
+        if (!groups_.count(g)) throw std::invalid_argument("the specimen's measures name no node group '" + g + "'");
+    support_ = &groups_.at(meas_.support), loaded_ = &groups_.at(meas_.loaded);
 
-    freq_ = latticeFrequencies(lat_, con_.mask);
+    freq_ = latticeFrequencies(lat_, pre_.mask);
     // A mechanism (a motion that stretches no bar) has omega_1 = 0: no damping
     // (D_f = 2 zeta omega_1), an infinite smooth start, NaN at once.
     if (!(freq_.omega1 > 1e-6 * freq_.omegaMax)) {
@@ -53,14 +61,14 @@ Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, con
     Df_ = massDampingCoefficient(run_.zeta, freq_.omega1);
     const double pi = 3.14159265358979323846;
     const double period1 = 2 * pi / freq_.omega1;
-    drive_.v0 = load_.strainRate * con_.height;
+    drive_.v0 = load_.strainRate * meas_.gaugeLength;
     drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
     drive_.speedup = load_.lossSpeedup;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
     } else {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
-        const double rowTime = mat_.epsP / 50 * con_.height / (drive_.v0 * con_.meanTopWeight);
+        const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * meas_.meanDriveWeight);
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
 
@@ -102,26 +110,27 @@ double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTi
 
 void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }
 
-double Simulation::bottomStress() const {
-    double bottom = 0;
-    for (auto n : con_.bottomNodes) bottom += f_.z[n];
-    return bottom / con_.faceArea;
+double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
+    const std::vector<double>& f = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
+    double sum = 0;
+    for (auto n : nodes) sum += f[n];
+    return sum;
 }
 
-bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), con_.topNodes, con_.bottomNodes); }
+double Simulation::supportStress() const { return groupForce(*support_) / meas_.area; }
+
+bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
 CurvePoint Simulation::measure() const {
     CurvePoint p;
     p.step = step_;
     p.time = time_;
     p.meanStrain = meanStrainAt(time_);
-    double top = 0;
-    for (auto n : con_.topNodes) top -= f_.z[n];
-    p.stressBottom = bottomStress();
-    p.stressTop = top / con_.faceArea;
+    p.stress = supportStress();
+    p.stressLoaded = (0.0 - groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
     const BarEnergies e = barEnergies(lat_, u_, bars_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
-    p.kinetic = kineticEnergy(lat_.mass, con_.mask, v_);
+    p.kinetic = kineticEnergy(lat_.mass, pre_.mask, v_);
     p.externalWork = externalWork_;
     p.damping = dampingWork_;
     return p;
@@ -146,10 +155,10 @@ void Simulation::finishStep() {
     const double tNext = time_ + dt_;
     const double Unext = drive_.displacement(tNext), Unow = drive_.displacement(time_);
     const double centred = 0.5 * (Unext - drive_.displacement(time_ - dt_));
-    for (std::size_t k = 0; k < con_.node.size(); ++k) {
-        const auto n = con_.node[k];
-        const int d = con_.dim[k];
-        const double w = con_.weight[k];
+    for (std::size_t k = 0; k < pre_.node.size(); ++k) {
+        const auto n = pre_.node[k];
+        const int d = pre_.dim[k];
+        const double w = pre_.weight[k];
         std::vector<double>& fd = d == 0 ? f_.x : d == 1 ? f_.y : f_.z;
         externalWork_ -= fd[n] * w * centred;
         (d == 0 ? u_.x : d == 1 ? u_.y : u_.z)[n] = w * Unext;
@@ -167,11 +176,11 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     std::int64_t lastCheck = -kSeparationCheckSteps;
     // The peak, at every step: the stress of state n is known once its forces are.
     auto trackPeak = [&](double tn) {
-        const double stress = bottomStress();
+        const double stress = supportStress();
         if (stress <= s.peakStress) return;
         s.peakStress = stress;
         s.strainAtPeak = meanStrainAt(tn);
-        s.edgeStrainAtPeak = drive_.displacement(tn) / con_.height;
+        s.edgeStrainAtPeak = drive_.displacement(tn) / meas_.gaugeLength;
     };
     for (;;) {
         if (step_ % recordEvery_ != 0) {
@@ -186,7 +195,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the
         // integration is unstable; stop before it writes garbage.
-        if (!std::isfinite(total) || !std::isfinite(p.stressBottom) ||
+        if (!std::isfinite(total) || !std::isfinite(p.stress) ||
             p.kinetic > 1.5 * p.externalWork + 1e-9 * (1 + maxWork)) {
             std::ostringstream msg;
             msg << "numerical instability at step " << step_ << " (t = " << time_ << " s): kinetic energy "
@@ -199,11 +208,11 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         s.fractureEnergy = p.fracture;
         s.steps = step_;
         const bool keepGoing = !observer || observer(p);
-        if (!s.loadLoss.reached() && loadLoss.update(p.time, p.stressBottom, s.peakStress, p.broken)) {
+        if (!s.loadLoss.reached() && loadLoss.update(p.time, p.stress, s.peakStress, p.broken)) {
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
             drive_.speedupStart = time_;
         }
-        if (p.broken > 0 && p.stressBottom < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheckSteps) {
+        if (p.broken > 0 && p.stress < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheckSteps) {
             lastCheck = step_;
             if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
         }

@@ -1,11 +1,15 @@
-// A cube tension test (LDEM_SPEC section 6) from specimen to separation:
-// lattice + random G_f + boundary conditions + central differences + energy
-// bookkeeping. run() is the time-step loop; everything it calls per step is in
-// InternalForces (bars), Integrator (nodes) and Loading (prescribed DOFs).
+// A run of a specimen (Specimen.hpp; the study's cube test, LDEM_SPEC section
+// 6, is one) from rest to separation: random G_f + the specimen's prescribed
+// DOFs + central differences + energy bookkeeping. run() is the time-step loop;
+// everything it calls per step is in InternalForces (bars), Integrator (nodes)
+// and Loading (the drive). A record step computes the same step in two halves
+// (computeForces, measure, advance) so that state n can be measured between
+// them; the arithmetic is that of step(), bit for bit (tests/cpp/test_dynamics).
 #pragma once
 #include <cstdint>
 #include <deque>
 #include <functional>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -19,6 +23,7 @@
 #include "ldem/Material.hpp"
 #include "ldem/Modal.hpp"
 #include "ldem/RunParams.hpp"
+#include "ldem/Specimen.hpp"
 
 namespace ldem {
 
@@ -26,8 +31,8 @@ struct CurvePoint {
     std::int64_t step = 0;
     double time = 0;          // [s]
     double meanStrain = 0;    // mean vertical displacement of the upper nodes / height
-    double stressBottom = 0;  // sum of vertical reactions of the lower nodes / face area [Pa]
-    double stressTop = 0;     // same on the upper face [Pa]
+    double stress = 0;        // reactions of the support group along the measured direction / area [Pa]
+    double stressLoaded = 0;  // the same on the loaded group, negated [Pa]
     double externalWork = 0, kinetic = 0, elastic = 0, fracture = 0, damping = 0;  // [J]
     std::int64_t damaged = 0, broken = 0;
     double balanceResidual() const { return externalWork - (kinetic + elastic + fracture + damping); }
@@ -76,10 +81,16 @@ public:
 
 class Simulation {
 public:
+    // Runs any specimen: its lattice was built with material m; load gives the
+    // drive (rate, smooth start, speed-up after load loss).
+    Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run);
+    // The cube test of nx x ny x nz modules (cubeTestSpecimen).
     Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
                const RunParams& run);
     // The cube of p.geometry (size / L0 modules a side).
     explicit Simulation(const CubeTestParams& p);
+    Simulation(const Simulation&) = delete;  // holds pointers into its own groups
+    Simulation& operator=(const Simulation&) = delete;
 
     // The time-step loop: records every recordEvery steps, calls observer (which may
     // return false to stop), speeds the drive up once the load is lost, stops
@@ -102,7 +113,9 @@ public:
     void forceTimeStep(double dt) { dt_ = dt, cd_ = CentralDifference(dt_, Df_); }
 
     const Lattice& lattice() const { return lat_; }
-    const Constraints& constraints() const { return con_; }
+    const Prescribed& prescribed() const { return pre_; }
+    const Measures& measures() const { return meas_; }
+    const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
     const BarState& bars() const { return bars_; }
     const Field3& displacements() const { return u_; }
     std::vector<double> fractureEnergyField() const;  // G_f of every bar (recomputed from the seed)
@@ -116,26 +129,34 @@ public:
     double dt() const { return dt_; }
     double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
     double dampingCoefficient() const { return Df_; }
-    double bottomStress() const;  // sum of the vertical reactions of the lower nodes / face area, state n [Pa]
-    bool facesJoined() const;     // some chain of intact bars joins the upper and lower faces
+    double supportStress() const;  // reactions of the support group / area, state n [Pa]
+    bool facesJoined() const;      // some chain of intact bars joins the support and loaded groups
     double rampTime() const { return drive_.rampTime; }
     double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }
     std::int64_t clampedBars() const { return clamped_; }
     std::int64_t stepCount() const { return step_; }
     int recordEvery() const { return recordEvery_; }
-    double minFractureEnergy() const { return mat_.GfMean * con_.faceArea; }  // U_min
+    double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
 
 private:
-    double meanStrainAt(double t) const { return drive_.displacement(t) * con_.meanTopWeight / con_.height; }
-    double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, con_.mask, f_, u_, v_); }
+    double meanStrainAt(double t) const {
+        return drive_.displacement(t) * meas_.meanDriveWeight / meas_.gaugeLength;
+    }
+    double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, pre_.mask, f_, u_, v_); }
+    // Sum over the nodes of a group of a force component along the measured direction.
+    double groupForce(const std::vector<std::int32_t>& nodes) const;
     void finishStep();  // damping and external work, prescribed DOFs, clock
 
     Material mat_;
     LoadingParams load_;
     RunParams run_;
     Lattice lat_;
-    Constraints con_;
+    Prescribed pre_;
+    Measures meas_;
+    std::map<std::string, std::vector<std::int32_t>> groups_;
+    const std::vector<std::int32_t>* support_ = nullptr;  // groups_[meas_.support]
+    const std::vector<std::int32_t>* loaded_ = nullptr;   // groups_[meas_.loaded]
     Frequencies freq_;
     Drive drive_;
     BarState bars_;

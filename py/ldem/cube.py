@@ -107,8 +107,8 @@ CURVE_COLUMNS = ["step", "time_s", "mean_strain", "stress_MPa", "stress_top_MPa"
 def curve_row(p) -> dict:
     """One record of the run (_core.CurvePoint) as a curve row: the one place
     where the core's SI stresses become MPa."""
-    return {"step": p.step, "time_s": p.time, "mean_strain": p.mean_strain, "stress_MPa": p.stress_bottom * 1e-6,
-            "stress_top_MPa": p.stress_top * 1e-6, "external_work_J": p.external_work, "kinetic_J": p.kinetic,
+    return {"step": p.step, "time_s": p.time, "mean_strain": p.mean_strain, "stress_MPa": p.stress * 1e-6,
+            "stress_top_MPa": p.stress_loaded * 1e-6, "external_work_J": p.external_work, "kinetic_J": p.kinetic,
             "elastic_J": p.elastic, "fracture_J": p.fracture, "damping_J": p.damping, "damaged_bars": p.damaged,
             "broken_bars": p.broken}
 

@@ -33,7 +33,8 @@ def cheapest_cut(sim):
     bars = sim.lattice.bar_table()
     n1, n2 = np.asarray(bars["n1"], np.int64), np.asarray(bars["n2"], np.int64)
     e = np.asarray(sim.rupture_energy, np.float64)
-    top, bottom = np.asarray(sim.top_nodes, np.int64), np.asarray(sim.bottom_nodes, np.int64)
+    m = sim.measures
+    top, bottom = np.asarray(sim.group(m["loaded"]), np.int64), np.asarray(sim.group(m["support"]), np.int64)
     if np.intersect1d(top, bottom).size:
         raise ValueError("a node is on both faces: no cut separates them")
     upper = _face_cut(e, n1, n2, top)

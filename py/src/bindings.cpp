@@ -78,8 +78,8 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("step", &CurvePoint::step)
         .def_readonly("time", &CurvePoint::time)
         .def_readonly("mean_strain", &CurvePoint::meanStrain)
-        .def_readonly("stress_bottom", &CurvePoint::stressBottom)
-        .def_readonly("stress_top", &CurvePoint::stressTop)
+        .def_readonly("stress", &CurvePoint::stress, "reactions of the support group / area [Pa]")
+        .def_readonly("stress_loaded", &CurvePoint::stressLoaded, "the same on the loaded group, negated [Pa]")
         .def_readonly("external_work", &CurvePoint::externalWork)
         .def_readonly("kinetic", &CurvePoint::kinetic)
         .def_readonly("elastic", &CurvePoint::elastic)
@@ -212,7 +212,7 @@ PYBIND11_MODULE(_core, m) {
              py::arg("t"), "U(t): the prescribed displacement of the most-pulled upper node [m]")
         .def("prescribed_dofs",
              [](const Simulation& s) {  // u[node][dim] = weight * U(t)
-                 const Constraints& c = s.constraints();
+                 const Prescribed& c = s.prescribed();
                  py::dict d;
                  d["node"] = toNumpy(c.node), d["dim"] = toNumpy(c.dim), d["weight"] = toNumpy(c.weight);
                  return d;
@@ -221,11 +221,32 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("steps", &Simulation::stepCount)
         .def_property_readonly("record_every", &Simulation::recordEvery)
         .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)
-        .def_property_readonly("face_area", [](const Simulation& s) { return s.constraints().faceArea; })
-        .def_property_readonly("height", [](const Simulation& s) { return s.constraints().height; })
-        .def_property_readonly("top_nodes", [](const Simulation& s) { return toNumpy(s.constraints().topNodes); })
-        .def_property_readonly("bottom_nodes",
-                               [](const Simulation& s) { return toNumpy(s.constraints().bottomNodes); })
+        .def_property_readonly("area", [](const Simulation& s) { return s.measures().area; },
+                               "area the reactions are divided by [m^2]")
+        .def_property_readonly("gauge_length", [](const Simulation& s) { return s.measures().gaugeLength; },
+                               "length the drive's displacement is divided by [m] (the cube's height)")
+        .def_property_readonly("measures",
+                               [](const Simulation& s) {
+                                   const Measures& m = s.measures();
+                                   py::dict d;
+                                   d["support"] = m.support, d["loaded"] = m.loaded, d["dim"] = m.dim;
+                                   d["area"] = m.area, d["gauge_length"] = m.gaugeLength;
+                                   d["mean_drive_weight"] = m.meanDriveWeight;
+                                   return d;
+                               })
+        .def_property_readonly("group_names",
+                               [](const Simulation& s) {
+                                   std::vector<std::string> names;
+                                   for (const auto& g : s.groups()) names.push_back(g.first);
+                                   return names;
+                               })
+        .def(
+            "group", [](const Simulation& s, const std::string& name) {
+                const auto it = s.groups().find(name);
+                if (it == s.groups().end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
+                return toNumpy(it->second);
+            },
+            py::arg("name"), "the nodes of a named group (the cube: 'bottom', 'top')")
         .def_property_readonly("fracture_energy_field", [](const Simulation& s) { return toNumpy(s.fractureEnergyField()); })
         .def_property_readonly("rupture_energy", [](const Simulation& s) { return toNumpy(s.ruptureEnergies()); },
                                "energy each bar dissipates when it breaks [J] (A_f G_f; 1/2 L EA eps_p^2 if clamped)")

@@ -56,7 +56,7 @@ const StaticRef kStatic8{0.9018194200807457, 0.24136551792152708};
 constexpr double kDynamicTol = 2e-3;  // relative: measured 5.5e-4 at most
 
 struct ElasticResult {
-    double Eapp, nuX, nuY, strain, stressBottom, stressTop;
+    double Eapp, nuX, nuY, strain, stress, stressLoaded;
     std::int64_t damaged;
 };
 
@@ -87,18 +87,18 @@ ElasticResult pullOnRollers(int n, double zeta = 0.5, double strainRate = 0.02, 
         ey += (u.y[lat.cornerId(j, n, k)] - u.y[lat.cornerId(j, 0, k)]) / W;
     }
     ex /= n + 1, ey /= n + 1;
-    const double stress = 0.5 * (last.stressBottom + last.stressTop);
+    const double stress = 0.5 * (last.stress + last.stressLoaded);
     ElasticResult r{stress / last.meanStrain / m.E,
                     -ex / last.meanStrain,
                     -ey / last.meanStrain,
                     last.meanStrain,
-                    last.stressBottom,
-                    last.stressTop,
+                    last.stress,
+                    last.stressLoaded,
                     last.damaged + last.broken};
     std::printf(
         "[ elastic ] %d^3 rollers, zeta %.2f, rate %.3g/s: strain %.4g, stress bottom %.5g top %.5g Pa, "
         "E_app = %.6f E, nu_x = %.6f, nu_y = %.6f\n",
-        n, zeta, strainRate, r.strain, r.stressBottom, r.stressTop, r.Eapp, r.nuX, r.nuY);
+        n, zeta, strainRate, r.strain, r.stress, r.stressLoaded, r.Eapp, r.nuX, r.nuY);
     return r;
 }
 
@@ -109,7 +109,7 @@ TEST(ElasticEquivalence, SixCubeOnRollersApparentModulusAndPoisson) {
     EXPECT_EQ(r.damaged, 0);  // well below eps_p: purely elastic
     EXPECT_NEAR(r.strain, 2e-5, 1e-6);
     // Quasi-static: both faces carry the same stress.
-    EXPECT_NEAR(r.stressTop, r.stressBottom, 0.005 * r.stressBottom);
+    EXPECT_NEAR(r.stressLoaded, r.stress, 0.005 * r.stress);
     // The surface layer makes a 6^3 cube 13 % softer than E and its nu 0.237:
     // the static solution, within what is left of the dynamics (measured
     // +0.055 % and -0.035 %).

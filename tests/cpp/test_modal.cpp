@@ -15,6 +15,7 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Modal.hpp"
+#include "ldem/Specimen.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Simulation.hpp"
 
@@ -86,10 +87,11 @@ void checkFrequencies(int n, bool rollers) {
     SCOPED_TRACE(testing::Message() << n << "^3, bottom rollers " << rollers);
     Material m;
     const double L0 = 0.02, H = n * L0;
-    const Lattice lat = buildCubicLattice(n, n, n, L0, m);
     LoadingParams lp;
     lp.bottomLateralFree = rollers;
-    const Constraints con = cubeTestConstraints(lat, lp);
+    const Specimen spec = cubeTestSpecimen(n, n, n, L0, m, lp);
+    const Lattice& lat = spec.lattice;
+    const Prescribed& con = spec.prescribed;
     const Frequencies f = latticeFrequencies(lat, con.mask);
     const Reduced r = reduce(lat, con.mask);
 
@@ -154,8 +156,9 @@ TEST(Modal, LanczosAgainstDenseTwoModulesRollers) { checkFrequencies(2, true); }
 // refuses it with a message instead of running into NaN (D_f = 0, ramp time inf).
 TEST(Modal, OneModuleIsAMechanismAndIsRefused) {
     Material m;
-    const Lattice lat = buildCubicLattice(1, 1, 1, 0.02, m);
-    const Constraints con = cubeTestConstraints(lat, LoadingParams{});
+    const Specimen spec = cubeTestSpecimen(1, 1, 1, 0.02, m, LoadingParams{});
+    const Lattice& lat = spec.lattice;
+    const Prescribed& con = spec.prescribed;
     const Frequencies f = latticeFrequencies(lat, con.mask);
     const Reduced r = reduce(lat, con.mask);
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(r.A, Eigen::EigenvaluesOnly);

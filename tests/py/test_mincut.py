@@ -26,7 +26,7 @@ except ImportError:  # not staged in build/python until the next build: the sour
 def graph(sim):
     bars = sim.lattice.bar_table()
     return (sim.lattice.n_nodes, bars["n1"], bars["n2"], np.asarray(sim.rupture_energy),
-            np.asarray(sim.top_nodes), np.asarray(sim.bottom_nodes))
+            np.asarray(sim.group("top")), np.asarray(sim.group("bottom")))
 
 
 def brute_force(n, n1, n2, e, top, bottom, chunk=1 << 13):
@@ -83,8 +83,10 @@ def random_graph():
 def test_spread_and_parallel_bars_do_not_overflow(make):
     n, n1, n2, e, top, bottom = make()
     top, bottom = np.array(top), np.array(bottom)
+    groups = {"top": top, "bottom": bottom}
     sim = SimpleNamespace(lattice=SimpleNamespace(n_nodes=n, bar_table=lambda: dict(n1=n1, n2=n2)),
-                          rupture_energy=e, top_nodes=top, bottom_nodes=bottom, min_fracture_energy=1.0)
+                          rupture_energy=e, measures={"loaded": "top", "support": "bottom"}, group=groups.get,
+                          min_fracture_energy=1.0)
     assert_within_bound(cheapest_cut(sim), brute_force(n, n1, n2, e, top, bottom), n1, n2, e, top)
 
 

@@ -213,7 +213,7 @@ def test_triangular_drive_weights_the_face_linearly():
     most-pulled edge: weights from 0 at one edge to 1 at the other, mean 1/2."""
     sim = ldem.CubeTest(size=0.04, load="triangular", threads=1).simulation()
     d = sim.prescribed_dofs()
-    top = np.isin(d["node"], sim.top_nodes) & (d["dim"] == 2)
+    top = np.isin(d["node"], sim.group("top")) & (d["dim"] == 2)
     x = sim.lattice.x0[d["node"][top]]
     w = d["weight"][top]
     assert np.allclose(w, x / 0.04, rtol=0, atol=1e-15) or np.allclose(w, 1 - x / 0.04, rtol=0, atol=1e-15)
@@ -350,6 +350,6 @@ def test_bars_vtu_fields_match_the_run(tmp_path):
     assert (state == 2).sum() == r.curve["broken_bars"][-1] > 0
     assert (state == 1).sum() == r.curve["damaged_bars"][-1] > 0  # damaged, not broken
     # The end state is the last record's: the vertical displacement of the upper face gives its mean strain.
-    top = sim.top_nodes
+    top = sim.group("top")
     assert u[top, 2].mean() / s["parameters"]["size"] == pytest.approx(r.curve["mean_strain"][-1], rel=1e-12)
     assert s["stop_reason"] == "load_lost"

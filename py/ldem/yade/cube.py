@@ -19,7 +19,7 @@ def cube_constraints(sim):
         held[int(n)] += "xyz"[int(d)]
         if d == 2:
             weight[int(n)] = float(w)
-    return held, np.array([weight[int(n)] for n in sim.top_nodes])
+    return held, np.array([weight[int(n)] for n in sim.group("top")])
 
 
 def _event(step, time, mean_strain, fracture):
@@ -43,15 +43,15 @@ class CubeSpecimen:
             O.reset()
         lat = sim.lattice
         self.sim = sim
-        self.height, self.face_area = sim.height, sim.face_area
+        self.height, self.face_area = sim.gauge_length, sim.area
         self.dt = sim.dt
         self.radius = radius_factor * lat.L0
         held, self.top_weights = cube_constraints(sim)
         self.mean_top_weight = sum(float(w) for w in self.top_weights) / len(self.top_weights)  # ldem's order
-        self.bottom = [int(n) for n in sim.bottom_nodes]
-        self.top = [int(n) for n in sim.top_nodes]
+        self.bottom = [int(n) for n in sim.group("bottom")]
+        self.top = [int(n) for n in sim.group("top")]
         # ldem's Drive: v0, ramp, and the speed-up from the load loss on (never, until then)
-        self.v0 = sim.loading.strain_rate * sim.height
+        self.v0 = sim.loading.strain_rate * sim.gauge_length
         self.speedup = sim.loading.loss_speedup
         self.ramp_time = sim.ramp_time
         self.speedup_start = math.inf

@@ -41,7 +41,7 @@ def drive_mul_add(sim):
     """_fma or _mul_add, whichever reproduces sim's own U(t) on the ramp bit for
     bit: whether the compiler fused ldem's Drive's multiply-adds (it does with
     -march=native on a CPU with FMA)."""
-    v0, tr = sim.loading.strain_rate * sim.height, sim.ramp_time
+    v0, tr = sim.loading.strain_rate * sim.gauge_length, sim.ramp_time
     ts = [tr * k / 97 for k in range(1, 97)]
     for f in (_fma, _mul_add):
         if all(v0 * _ramp_integral(t, tr, f) == sim.drive_displacement(t) for t in ts):
