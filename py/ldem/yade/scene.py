@@ -6,6 +6,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from .. import _core
+
 # epsCrackOnset given to a ruptured bar: omega = 1 - 1e-300/kappa == 1.0 exactly.
 BROKEN_ONSET = 1e-300
 # A bar is switched to "ruptured" once its strain reaches eps_r (1 - GUARD_MARGIN);
@@ -219,10 +221,8 @@ class RuptureGuard:
         return (self.kappa < self.bars.eps_r).astype(np.uint8)
 
     def fracture_energy(self):
-        """Energy dissipated by the bars [J]: ldem's dissipatedEnergy(kappa) summed
-        (0 up to eps_p, 1/2 L EA eps_p eps_r from eps_r on, linear in between)."""
-        b, k = self.bars, self.kappa
-        full = 0.5 * b.L * b.EA * b.eps_p * b.eps_r
-        span = np.where(b.eps_r > b.eps_p, b.eps_r - b.eps_p, 1.0)  # clamped bars: never used
-        e = np.where(k <= b.eps_p, 0.0, np.where(k >= b.eps_r, full, full * (k - b.eps_p) / span))
-        return float(e.sum())
+        """Energy dissipated by the bars [J]: ldem's own law, dissipatedEnergy(kappa)
+        (HillerborgLaw.hpp), summed over the bars (called at the run's events only)."""
+        b = self.bars
+        return float(sum(_core.dissipated_energy(float(k), float(EA), float(ep), float(er), float(L))
+                         for k, EA, ep, er, L in zip(self.kappa, b.EA, b.eps_p, b.eps_r, b.L)))
