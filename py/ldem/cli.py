@@ -9,6 +9,8 @@ import shutil
 import subprocess
 import sys
 
+import numpy as np
+
 EXIT_BAD_INPUT = 2
 EXIT_FAILED = 1
 
@@ -84,6 +86,48 @@ def cmd_cube(args) -> int:
     return 0
 
 
+# The summary's numbers that a rerun must reproduce exactly (the rest is when,
+# where and how fast).
+RERUN_KEYS = ("peak_stress_MPa", "strain_at_peak", "edge_strain_at_peak", "separated", "U_num_J", "load_loss",
+              "separation", "fracture_energy_J", "U_mincut_J", "energy_balance_error", "stop_reason", "steps",
+              "n_bars", "clamped_bars", "dt_s")
+
+
+def cmd_rerun(args) -> int:
+    import json
+
+    from .cube import CubeTest
+    from .io import read_curve, read_summary
+    from .runner import run_cube
+
+    path = os.path.join(args.dir, "summary.json")
+    try:
+        old = read_summary(path)
+    except OSError as e:
+        raise ValueError(f"cannot read {path}: {e.strerror}") from None
+    except json.JSONDecodeError as e:
+        raise ValueError(f"{path} is not JSON: {e}") from None
+    known = {f.name for f in dataclasses.fields(CubeTest)}
+    params = {k: v for k, v in old.get("parameters", {}).items() if k in known}
+    if not params:
+        raise ValueError(f"{path} holds no parameters to rerun")
+    out = args.out or os.path.join(args.dir, "rerun")
+    prov = old.get("provenance") or {}
+    print(f"rerun of {args.dir} (ldem {prov.get('ldem_version', '?')}, git {prov.get('git_commit') or '?'}, "
+          f"{prov.get('date', '?')} on {prov.get('host', '?')}) into {out}")
+    new = run_cube(CubeTest(**params), out=out, progress=False if args.no_progress else None, plots=False).summary
+    differ = [k for k in RERUN_KEYS if k in old and old[k] != new.get(k)]
+    a, b = read_curve(os.path.join(args.dir, "curve.csv")), read_curve(os.path.join(out, "curve.csv"))
+    same_curve = a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
+    if not same_curve:
+        differ.append("curve.csv")
+    for k in differ[:10]:
+        print(f"  differs: {k}: {old.get(k)!r} then, {new.get(k)!r} now" if k != "curve.csv" else "  differs: curve.csv")
+    print("identical: the curve and every number of the summary" if not differ else
+          f"{len(differ)} difference(s)")
+    return 0 if not differ else EXIT_FAILED
+
+
 def bench_program() -> str:
     """The ldem-bench program: beside the installed package's command, or in the build tree."""
     here = os.path.dirname(os.path.abspath(__file__))
@@ -107,7 +151,12 @@ def cmd_bench(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from . import __version__
+    from .cube import provenance
+
     p = _Parser(prog="ldem", description="Truss-like lattice DEM (Riera-Iturrioz) for fracture of concrete.")
+    commit = provenance()["git_commit"]
+    p.add_argument("--version", action="version", version=f"ldem {__version__}" + (f" (git {commit})" if commit else ""))
     sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     sub.required = True
 
@@ -131,6 +180,16 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
     b.add_argument("--repeats", type=int, default=5, metavar="R", help="repetitions (the median is reported)")
     b.set_defaults(func=cmd_bench)
+
+    r = sub.add_parser("rerun", help="run a result's folder again from its summary.json and compare",
+                       description="Reads DIR/summary.json (its parameters and provenance), runs the same test into "
+                                   "--out (default DIR/rerun) and compares the curve and the summary's numbers: exit 0 "
+                                   "if they are identical, 1 if not.",
+                       formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    r.add_argument("dir", metavar="DIR", help="a folder written by ldem cube (or a study's case folder)")
+    r.add_argument("--out", default=None, metavar="OUT", help="where the rerun writes (default: DIR/rerun)")
+    r.add_argument("--no-progress", action="store_true", help="no progress bar")
+    r.set_defaults(func=cmd_rerun)
 
     from . import study
     study.add_parser(sub)

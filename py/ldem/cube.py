@@ -68,6 +68,9 @@ class _CubeTestMethods:
         """
         t0 = time.perf_counter()
         sim = simulation if simulation is not None else self.simulation()
+        if sim.steps > 0:  # its state is the end of that run: a second run would start from there
+            raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
+                             "test.simulation()")
         rows = []
 
         def observe(p):
@@ -184,6 +187,24 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "split_window_s": sim.split_window,
         "threads": test.threads or _core.max_threads(),
         "wall_s": wall_s,
+        "provenance": provenance(),
         "parameters": test.parameters(),
     })
     return s
+
+
+def provenance() -> dict:
+    """Which ldem ran, where and when: with the parameters, enough to rerun a
+    result from its folder alone (`ldem rerun DIR`)."""
+    import datetime
+    import platform
+
+    from . import __version__
+
+    try:
+        from ._build_info import GIT_COMMIT  # written by the build (py/build_info.cmake)
+    except ImportError:
+        GIT_COMMIT = None
+    return {"ldem_version": __version__, "git_commit": GIT_COMMIT or None,
+            "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "host": platform.node(), "python": platform.python_version()}

@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from conftest import FAST, colour_share, picture
+from conftest import FAST, ROOT, colour_share, picture
 
 BAD_INPUT = [
     (["--size", "-0.12"], "size must be > 0 (got -0.12 m)"),
@@ -116,3 +116,38 @@ def test_energy_error_is_flagged_and_exits_1(cli, tmp_path):
     assert "energy balance error" in r.stderr and "not trustworthy" in r.stderr
     s = json.loads((out / "summary.json").read_text())
     assert s["energy_error"] is True and s["energy_balance_error"] > 1e-12 and s["status"] == "done"
+
+
+def test_version_and_provenance(cli, tmp_path):
+    """`ldem --version`; every summary.json says which ldem ran it, where and when."""
+    import subprocess
+
+    import ldem
+
+    r = cli("--version")
+    assert r.returncode == 0 and r.stdout.startswith(f"ldem {ldem.__version__}"), r.stdout + r.stderr
+    s = ldem.CubeTest(size=0.04, strain_rate=0.5, stop_at="load_loss").run().summary
+    p = s["provenance"]
+    assert p["ldem_version"] == ldem.__version__ and p["host"] and p["date"].endswith("+00:00")
+    head = subprocess.run(["git", "-C", ROOT, "rev-parse", "HEAD"], capture_output=True, text=True)
+    if head.returncode == 0:  # a checkout: the build wrote its commit
+        assert p["git_commit"].split("-")[0] == head.stdout.strip(), p
+        assert f"(git {p['git_commit']})" in r.stdout
+
+
+def test_rerun_reproduces_a_folder_and_says_when_it_does_not(cli, tmp_path):
+    out = tmp_path / "run"
+    r = cli("cube", "--size", "0.04", "--strain-rate", "0.5", "--out", str(out), "--no-progress", "--no-plots")
+    assert r.returncode == 0, r.stderr
+    r = cli("rerun", str(out), "--no-progress")
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert "identical: the curve and every number of the summary" in r.stdout
+    assert (out / "rerun" / "curve.csv").read_bytes() == (out / "curve.csv").read_bytes()
+    # A result that the same parameters do not give (here: an edited peak) is reported, exit 1.
+    s = json.loads((out / "summary.json").read_text())
+    s["peak_stress_MPa"] *= 1.01
+    (out / "summary.json").write_text(json.dumps(s))
+    r = cli("rerun", str(out), "--no-progress", "--out", str(tmp_path / "again"))
+    assert r.returncode == 1 and "differs: peak_stress_MPa" in r.stdout, r.stdout
+    r = cli("rerun", str(tmp_path / "nowhere"))
+    assert r.returncode == 2 and "cannot read" in r.stderr and len(r.stderr.strip().splitlines()) == 1

@@ -196,3 +196,12 @@ def test_bad_parameters_are_value_errors_naming_them(kw, message):
     with pytest.raises(ValueError) as e:
         ldem.CubeTest(**kw).params()
     assert str(e.value) == message
+
+
+def test_a_specimen_that_has_run_is_refused():
+    """Its state is the end of that run: a second run would report a bogus peak."""
+    test = ldem.CubeTest(**FAST)
+    sim = test.simulation()
+    test.run(simulation=sim)
+    with pytest.raises(ValueError, match=r"this specimen has already run \(\d+ steps\)"):
+        test.run(simulation=sim)

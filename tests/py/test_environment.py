@@ -76,3 +76,15 @@ def test_the_test_command_installs_nothing():
         assert forbidden not in text, forbidden
     r = subprocess.run(["bash", os.path.join(ROOT, "tests", "missing_packages.sh")], capture_output=True, text=True)
     assert r.returncode == 0 and r.stdout.strip() == "", r.stdout + r.stderr
+
+
+def test_citation_and_license():
+    """CITATION.cff names this version and the study ldem implements; LICENSE is there."""
+    import ldem
+
+    with open(os.path.join(ROOT, "CITATION.cff")) as f:
+        cff = f.read()
+    assert f"version: {ldem.__version__}\n" in cff
+    assert "Size Effects and Mesh Independence in Dynamic Fracture Analysis of Brittle Materials" in cff
+    with open(os.path.join(ROOT, "LICENSE")) as f:
+        assert f.readline().strip() == "MIT License"

@@ -100,12 +100,23 @@ def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
     with open(os.path.join(dirs[0], "summary.json"), "w") as f:
         json.dump(s, f)
     stamp[dirs[0]] = os.path.getmtime(os.path.join(dirs[0], "summary.json"))
+    # A curve.csv cut in its last row (a full disk, a kill): not finished.
+    curve = os.path.join(dirs[3], "curve.csv")
+    with open(curve, "rb") as f:
+        data = f.read()
+    with open(curve, "wb") as f:
+        f.write(data[:-7])
     ran = []
     again = study.run_cases(tests, out, log=ran.append)
-    assert ran[0] == f"2 of 4 cases already finished in {out}/cases"
-    assert len(ran) == 3  # that line and the two recomputed cases
-    for i in (0, 3):
-        assert os.path.getmtime(os.path.join(dirs[i], "summary.json")) == stamp[dirs[i]]
+    assert ran[0] == f"1 of 4 cases already finished in {out}/cases"
+    names = [study.case_name(t) for t in tests]
+    assert ran[1:4] == [f"  {names[1]}: status 'interrupted': running it again",
+                        f"  {names[2]}: no loadable slice.npz: running it again",
+                        f"  {names[3]}: curve.csv incomplete (last row at step -1, summary.json says "
+                        f"{first[3]['steps']}): running it again"]
+    assert len(ran) == 7  # those lines and the three recomputed cases
+    assert os.path.getmtime(os.path.join(dirs[0], "summary.json")) == stamp[dirs[0]]
+    assert again[3]["peak_stress_MPa"] == first[3]["peak_stress_MPa"]
     assert again[1]["status"] == "done"
     # Deterministic: the recomputed case gives the same figures.
     assert again[1]["peak_stress_MPa"] == first[1]["peak_stress_MPa"]
@@ -120,6 +131,8 @@ def test_size_effect_command_tables_and_report(tmp_path, cli):
     summary = study.read_csv(os.path.join(out, "summary.csv"))
     cases = study.read_csv(os.path.join(out, "cases.csv"))
     assert len(cases) == 8 and len(summary) == 4
+    import ldem
+    assert all(c["ldem_version"] == ldem.__version__ and c["host"] and c["date"] for c in cases)  # provenance
     for col in study.SUMMARY_COLUMNS:
         assert col in summary[0]
     u012 = [c for c in cases if c["load"] == "uniform" and c["size_m"] == 0.12]

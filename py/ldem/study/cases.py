@@ -11,7 +11,7 @@ from __future__ import annotations
 import dataclasses
 import os
 import shutil
-from typing import Dict, Iterable, List, Sequence
+from typing import Dict, Iterable, List, Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
@@ -43,13 +43,50 @@ def _comparable(params: dict) -> dict:
     return {k: params.get(k, d) for k, d in defaults.items() if k != "threads"}
 
 
-def is_finished(case_dir: str, test: CubeTest) -> bool:
+def _last_step(path: str) -> int:
+    """The step of curve.csv's last complete row (-1 if there is none)."""
+    with open(path, "rb") as f:
+        f.seek(0, os.SEEK_END)
+        f.seek(max(0, f.tell() - 4096))
+        lines = f.read().split(b"\n")
+    complete = [ln for ln in lines[:-1] if ln.strip()]  # a row is complete once its newline is written
+    if not complete or not lines[-1] == b"":
+        return -1
+    try:
+        return int(complete[-1].split(b",")[0])
+    except ValueError:
+        return -1
+
+
+def unfinished_reason(case_dir: str, test: CubeTest) -> Optional[str]:
+    """None if the case in case_dir is finished for test: summary.json says done
+    for the same parameters, curve.csv ends with the summary's last step and
+    slice.npz loads; else why not (the case is then run again)."""
+    if not os.path.isdir(case_dir):
+        return "not run yet"
     try:
         s = io.read_summary(os.path.join(case_dir, "summary.json"))
     except (OSError, ValueError):
-        return False
-    return (s.get("status") == "done" and _comparable(s.get("parameters", {})) == _comparable(test.parameters())
-            and os.path.exists(os.path.join(case_dir, "slice.npz")))
+        return "no readable summary.json"
+    if s.get("status") != "done":
+        return f"status {s.get('status')!r}"
+    if _comparable(s.get("parameters", {})) != _comparable(test.parameters()):
+        return "other parameters"
+    try:
+        last = _last_step(os.path.join(case_dir, "curve.csv"))
+    except OSError:
+        return "no curve.csv"
+    if last != s.get("steps"):
+        return f"curve.csv incomplete (last row at step {last}, summary.json says {s.get('steps')})"
+    try:
+        io.read_slice(os.path.join(case_dir, "slice.npz"))
+    except (OSError, ValueError, KeyError, EOFError):
+        return "no loadable slice.npz"
+    return None
+
+
+def is_finished(case_dir: str, test: CubeTest) -> bool:
+    return unfinished_reason(case_dir, test) is None
 
 
 def run_case(params: dict, case_dir: str) -> dict:

@@ -8,7 +8,7 @@ from typing import Callable, List, Optional, Sequence
 from .. import io
 from ..cube import CubeTest
 from ..progress import CaseProgress
-from .cases import case_dir, case_name, is_finished, load_summary, run_case
+from .cases import case_dir, case_name, load_summary, run_case, unfinished_reason
 
 
 def default_threads(jobs: int) -> int:
@@ -25,9 +25,13 @@ def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Opt
     dirs = [case_dir(out, t) for t in tests]
     if len(set(dirs)) != len(dirs):
         raise ValueError("two cases of the study have the same parameters")
-    todo = [i for i, (t, d) in enumerate(zip(tests, dirs)) if not is_finished(d, t)]
+    reasons = [unfinished_reason(d, t) for t, d in zip(tests, dirs)]
+    todo = [i for i, r in enumerate(reasons) if r is not None]
     if len(todo) < len(tests):
         log(f"{len(tests) - len(todo)} of {len(tests)} cases already finished in {out}/cases")
+    for i in todo:
+        if reasons[i] != "not run yet":
+            log(f"  {case_name(tests[i])}: {reasons[i]}: running it again")
     bar = CaseProgress(len(tests), len(tests) - len(todo), progress)
     args = [(tests[i].parameters(), dirs[i]) for i in todo]
 

@@ -20,12 +20,14 @@ CASE_COLUMNS = ("load", "size_m", "seed", "zeta", "strain_rate", "peak_stress_MP
                 "edge_strain_at_peak", "separated", "separation_strain", "U_num_J", "U_min_J", "U_ratio",
                 "load_loss_strain", "U_loss_J", "U_loss_ratio", "U_mincut_J", "U_mincut_ratio",
                 "energy_balance_error", "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
-                "wall_s", "stop_reason")
+                "wall_s", "stop_reason", "ldem_version", "git_commit", "date", "host")
 
 
 def case_row(s: dict) -> dict:
     """One case's row: U_num is the energy at separation, empty if the run ended
-    without separating (its energy at the end is never presented as U_num)."""
+    without separating (its energy at the end is never presented as U_num);
+    then which ldem ran it, where and when (empty for a case from before
+    summaries carried their provenance)."""
     p = s["parameters"]
     u_min = s["min_fracture_energy_J"]
     loss, sep = s.get("load_loss") or {}, s.get("separation") or {}
@@ -40,7 +42,8 @@ def case_row(s: dict) -> dict:
             "U_mincut_J": s["U_mincut_J"], "U_mincut_ratio": s["U_mincut_J"] / u_min,
             "energy_balance_error": s["energy_balance_error"], "energy_error": bool(s["energy_error"]),
             "clamped_bars": s["clamped_bars"], "n_bars": s["n_bars"], "steps": s["steps"], "dt_s": s["dt_s"],
-            "threads": s["threads"], "wall_s": s["wall_s"], "stop_reason": s["stop_reason"]}
+            "threads": s["threads"], "wall_s": s["wall_s"], "stop_reason": s["stop_reason"],
+            **{k: (s.get("provenance") or {}).get(k) or "" for k in ("ldem_version", "git_commit", "date", "host")}}
 
 
 def mean_cv(values) -> tuple:
