@@ -77,6 +77,9 @@ def test_peak_of_the_mean_curve():
 def test_case_names_carry_non_default_parameters():
     assert study.case_name(CubeTest(size=0.24, seed=3)) == "uniform_0.24m_s3"
     assert study.case_name(CubeTest(size=0.24, seed=3, zeta=2.0, threads=2)) == "uniform_0.24m_s3_zeta2"
+    # Values that %g would round alike get every digit: two cases never share a folder.
+    assert study.case_name(CubeTest(zeta=0.03000001)) == "uniform_0.12m_s1_zeta0.03000001"
+    assert study.case_name(CubeTest(zeta=0.030000000001)) != study.case_name(CubeTest(zeta=0.03))
 
 
 def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
@@ -183,3 +186,27 @@ def test_cases_on_a_local_dask_cluster(tmp_path):
     # The same cases in this process give the same numbers.
     local = study.run_cases(tests, str(tmp_path / "local"), log=lambda s: None)
     assert [s["peak_stress_MPa"] for s in local] == [s["peak_stress_MPa"] for s in summaries]
+
+
+def test_two_studies_never_share_a_folder(tmp_path):
+    """A study holds out/.lock while it runs; a second one stops with the holder's
+    name. A lock whose process is gone (killed) is taken over."""
+    import socket
+    import subprocess
+
+    out = str(tmp_path / "st")
+    os.makedirs(out)
+    lock = os.path.join(out, ".lock")
+    with open(lock, "w") as f:
+        f.write(f"{socket.gethostname()} {os.getpid()}\n")  # this process: alive
+    tests = study.size_effect_tests([0.04], 1, ["uniform"], **TINY)
+    with pytest.raises(ValueError, match=f"study folder {out} is in use by process {os.getpid()}"):
+        study.run_cases(tests, out, log=lambda s: None)
+    p = subprocess.Popen(["true"])  # a finished child: its pid runs nothing
+    p.wait()
+    with open(lock, "w") as f:
+        f.write(f"{socket.gethostname()} {p.pid}\n")
+    said = []
+    assert study.run_cases(tests, out, log=said.append)[0]["status"] == "done"
+    assert any("left its lock: taking it over" in s for s in said) and not os.path.exists(lock)
+

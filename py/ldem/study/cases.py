@@ -17,17 +17,26 @@ from .. import io
 from ..cube import CubeTest
 
 
+def _number(v) -> str:
+    """A parameter's value in a case name: short (%g) when that is exact, else
+    every digit, so that two different values never share a name."""
+    if not isinstance(v, float):
+        return str(v)
+    short = f"{v:g}"
+    return short if float(short) == v else repr(v)
+
+
 def case_name(test: CubeTest) -> str:
     """load_size_seed, then every parameter that differs from CubeTest's defaults
     (threads aside: they do not change the result)."""
-    name = f"{test.load}_{test.size:g}m_s{test.seed}"
+    name = f"{test.load}_{_number(test.size)}m_s{test.seed}"
     default = CubeTest()
     for f in dataclasses.fields(CubeTest):
         if f.name in ("load", "size", "seed", "threads"):
             continue
         v = getattr(test, f.name)
         if v != getattr(default, f.name):
-            name += f"_{f.name}{v:g}" if isinstance(v, float) else f"_{f.name}{v}"
+            name += f"_{f.name}{_number(v)}"
     return name
 
 

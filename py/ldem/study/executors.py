@@ -2,7 +2,9 @@
 on a dask.distributed cluster; finished cases are never recomputed."""
 from __future__ import annotations
 
+import contextlib
 import os
+import socket
 from typing import Callable, List, Optional, Sequence
 
 from .. import io
@@ -15,14 +17,64 @@ def default_threads(jobs: int) -> int:
     return max(1, (os.cpu_count() or 1) // max(1, jobs))
 
 
+@contextlib.contextmanager
+def study_lock(out: str, log: Callable[[str], None] = print):
+    """Holds out/.lock (host and pid) while a study runs there: a second study
+    in the same folder stops with the holder's name. A lock left by a process
+    of this host that no longer runs is taken over."""
+    path = os.path.join(out, ".lock")
+    me = f"{socket.gethostname()} {os.getpid()}\n"
+    for _ in range(2):
+        try:
+            fd = os.open(path, os.O_CREAT | os.O_EXCL | os.O_WRONLY)
+            break
+        except FileExistsError:
+            try:
+                with open(path) as f:
+                    host, pid = f.read().split()
+            except (OSError, ValueError):
+                host, pid = "?", "0"
+            if host == socket.gethostname() and not _alive(int(pid)):
+                log(f"{out}: a study that stopped without cleaning up (pid {pid}) left its lock: taking it over")
+                os.remove(path)
+                continue
+            raise ValueError(f"study folder {out} is in use by process {pid} on {host} "
+                             f"(if it is not, remove {path})") from None
+    else:
+        raise ValueError(f"cannot lock study folder {out}")
+    with os.fdopen(fd, "w") as f:
+        f.write(me)
+    try:
+        yield
+    finally:
+        os.remove(path)
+
+
+def _alive(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return pid > 0
+
+
 def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
               progress: Optional[bool] = None, log: Callable[[str], None] = print) -> List[dict]:
     """Runs every test not finished yet (in `jobs` processes, or on the dask
-    cluster at `scheduler`) and returns the summaries of all, in order."""
+    cluster at `scheduler`) and returns the summaries of all, in order. The
+    folder is locked meanwhile (study_lock)."""
     if jobs < 1:
         raise ValueError(f"--jobs must be at least 1 (got {jobs})")
     io.prepare_dir(out)
-    dirs = [case_dir(out, t) for t in tests]
+    with study_lock(out, log):
+        return _run_cases(tests, out, jobs, scheduler, progress, log)
+
+
+def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
+    # Absolute: worker processes and dask workers may start in other folders.
+    dirs = [case_dir(os.path.abspath(out), t) for t in tests]
     if len(set(dirs)) != len(dirs):
         raise ValueError("two cases of the study have the same parameters")
     reasons = [unfinished_reason(d, t) for t, d in zip(tests, dirs)]
