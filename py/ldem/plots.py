@@ -1,5 +1,9 @@
-"""Pictures of a run: stress-strain curve, energy budget, crack slice."""
+"""Pictures of a run: stress-strain curve, energy budget, crack slice. One
+style for every figure (ldem.mplstyle); the file's extension (png, pdf, svg)
+chooses the format."""
 from __future__ import annotations
+
+import os
 
 import matplotlib
 
@@ -11,6 +15,18 @@ from matplotlib.lines import Line2D  # noqa: E402
 
 from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
 
+STYLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ldem.mplstyle")
+plt.style.use(STYLE)
+FIGURE_FORMATS = ("png", "pdf", "svg")
+STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
+
+
+def save(fig, path: str) -> None:
+    """Writes fig in the format of path's extension, then frees it."""
+    fig.savefig(path)
+    plt.close(fig)
+
+
 # The study's colours.
 STATE_COLOURS = {UNDAMAGED: "cyan", DAMAGED: "orange", BROKEN: "red"}
 STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
@@ -18,36 +34,38 @@ STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 def curve_figure(result, path: str) -> None:
     c, s = result.curve, result.summary
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=1.5, label="lower face (reaction)")
-    ax.plot(c["mean_strain"] * 1e4, c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="upper face")
+    fig, ax = plt.subplots()
+    ax.plot(c["mean_strain"], c["stress_MPa"], label="lower face (reaction)")
+    ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="upper face")
     if "peak_stress_MPa" in s:
-        ax.plot(s["strain_at_peak"] * 1e4, s["peak_stress_MPa"], "ko", ms=5,
+        ax.plot(s["strain_at_peak"], s["peak_stress_MPa"], "ko", ms=5,
                 label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
     t = result.test
-    ax.set(xlabel="mean strain [1e-4]", ylabel="normal stress [MPa]",
-           title=f"{t.size:g} m cube, {t.load} loading, seed {t.seed}")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    ax.set(xlabel=STRAIN_LABEL, ylabel=STRESS_LABEL, title=f"{t.size:g} m cube, {t.load} loading, seed {t.seed}"
+           + energy_flag(s))
+    ax.legend()
+    save(fig, path)
+
+
+def energy_flag(summary: dict) -> str:
+    """A title's warning when the run's energy balance is off (energy_error)."""
+    if not summary.get("energy_error"):
+        return ""
+    return f"\nENERGY ERROR {summary['energy_balance_error']:.2e}: not trustworthy"
 
 
 def energy_figure(result, path: str) -> None:
     c = result.curve
-    x = c["mean_strain"] * 1e4
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    x = c["mean_strain"]
+    fig, ax = plt.subplots()
     ax.plot(x, c["external_work_J"], "k", lw=2, label="external work")
     ax.stackplot(x, c["elastic_J"], c["fracture_J"], c["damping_J"], c["kinetic_J"],
                  labels=["elastic", "fracture", "damping", "kinetic"], alpha=0.6)
-    ax.set(xlabel="mean strain [1e-4]", ylabel="energy [J]",
-           title=f"energy budget (balance error {result.summary.get('energy_balance_error', float('nan')):.2e})")
-    ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    ax.set(xlabel=STRAIN_LABEL, ylabel="energy [J]",
+           title=f"energy budget (balance error {result.summary.get('energy_balance_error', float('nan')):.2e})"
+           + energy_flag(result.summary))
+    ax.legend(loc="upper left")
+    save(fig, path)
 
 
 def central_slice(sim, axis: int = 1):
@@ -79,7 +97,8 @@ def draw_slice(ax, seg, state) -> dict:
         ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw * thin))
     ax.set_aspect("equal")
     ax.autoscale()
-    ax.set_xticks([]), ax.set_yticks([])
+    ax.grid(False)
+    ax.set(xlabel="x [m]", ylabel="z [m]")
     return counts
 
 
@@ -90,13 +109,11 @@ def state_handles(counts=None) -> list:
 
 
 def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
-    fig, ax = plt.subplots(figsize=(5.6, 6.0))
-    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center", bbox_to_anchor=(0.5, -0.01),
-              ncol=3, fontsize=8, frameon=False)
+    fig, ax = plt.subplots(figsize=(5.6, 6.2))
+    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center", bbox_to_anchor=(0.5, -0.1),
+              ncol=3)
     ax.set_title(title or "central slice", fontsize=9)
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    save(fig, path)
 
 
 def crack_figure(sim, path: str, title: str = "") -> None:

@@ -32,15 +32,11 @@ def curve_groups(cases: Sequence[Case]) -> Dict[tuple, List[dict]]:
     return groups
 
 
-def _save(fig, path):
-    fig.tight_layout()
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+_save = plots.save
 
 
 def _strain_axis(ax, ylabel):
-    ax.set(xlabel="mean strain [1e-4]", ylabel=ylabel)
-    ax.grid(alpha=0.3)
+    ax.set(xlabel=plots.STRAIN_LABEL, ylabel=ylabel)
 
 
 def specimen_curves_figure(groups, load, sizes, path):
@@ -49,10 +45,10 @@ def specimen_curves_figure(groups, load, sizes, path):
     for ax, size in zip(axes[0], sizes):
         curves = groups[(load, size)]
         for k, c in enumerate(curves, start=1):
-            ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=0.8, alpha=0.6, label=f"seed {k}")
+            ax.plot(c["mean_strain"], c["stress_MPa"], lw=0.8, alpha=0.6, label=f"seed {k}")
         x, y = mean_curve(curves, "stress_MPa", after_end=0.0)
-        ax.plot(x * 1e4, y, "k", lw=2.2, label="mean")
-        _strain_axis(ax, "normal stress [MPa]")
+        ax.plot(x, y, "k", lw=2.2, label="mean")
+        _strain_axis(ax, plots.STRESS_LABEL)
         ax.set_title(f"{size:g} m cube, {load}")
         ax.legend(fontsize=7)
     _save(fig, path)
@@ -62,7 +58,7 @@ def mean_curves_figure(groups, load, sizes, path):
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for size in sizes:
         x, y = mean_curve(groups[(load, size)], "stress_MPa", after_end=0.0)
-        ax.plot(x * 1e4, y, lw=1.6, label=f"{size:g} m")
+        ax.plot(x, y, lw=1.6, label=f"{size:g} m")
     _strain_axis(ax, "mean normal stress [MPa]")
     ax.set_title(f"mean stress-strain curves, {load} loading")
     ax.legend(fontsize=8)
@@ -88,7 +84,7 @@ def fracture_energy_figure(cases, load, sizes, path):
                             ms=7)
         x, y = mean_curve([g.curve for g in group], "fracture_J", scale=1.0 / u_min, log_from=1e-5)
         ax.plot(x, y, lw=1.8, color=color, label=f"{size:g} m (mean)")
-    ax.set(xscale="log", xlim=(1e-5, None), xlabel="mean strain", ylabel="U_frac / U_min")
+    ax.set(xscale="log", xlim=(1e-5, None), xlabel=plots.STRAIN_LABEL, ylabel="U_frac / U_min [-]")
     ax.grid(alpha=0.3, which="both")
     ax.set_title(f"fracture energy to separation, {load} (|: load lost, x: separated)", fontsize=10)
     ax.legend(fontsize=8)
@@ -105,8 +101,7 @@ def cracks_figure(cases, load, sizes, path, seed=1):
     fig.legend(handles=plots.state_handles(), loc="lower center", ncol=3, fontsize=10, frameon=False)
     fig.suptitle(f"central slices at the end of the test, {load} loading", fontsize=11)
     fig.tight_layout(rect=(0, 0.06, 1, 1))
-    fig.savefig(path, dpi=130)
-    plt.close(fig)
+    _save(fig, path)
 
 
 def fractal_figure(table, case_rows, fits, path):
@@ -130,18 +125,18 @@ def fractal_figure(table, case_rows, fits, path):
     _save(fig, path)
 
 
-def damping_figures(out, cases) -> List[str]:
+def damping_figures(out, cases, fmt: str = "png") -> List[str]:
     """One figure per load: the stress-strain curve at each damping ratio."""
     names = []
     for load in dict.fromkeys(c.test.load for c in cases):
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
         for t, s, c in ((g.test, g.summary, g.curve) for g in cases if g.test.load == load):
-            ax.plot(c["mean_strain"] * 1e4, c["stress_MPa"], lw=1.4,
+            ax.plot(c["mean_strain"], c["stress_MPa"], lw=1.4,
                     label=f"zeta = {t.zeta:g}: peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
-        _strain_axis(ax, "normal stress [MPa]")
+        _strain_axis(ax, plots.STRESS_LABEL)
         ax.set_title(f"damping, {cases[0].test.size:g} m cube, {load}, seed {cases[0].test.seed}")
         ax.legend(fontsize=8)
-        names.append(f"damping_{load}.png")
+        names.append(f"damping_{load}.{fmt}")
         _save(fig, os.path.join(out, names[-1]))
     return names
 
@@ -162,7 +157,7 @@ def _pct(a, b):
 
 
 def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_rows: Optional[list] = None,
-                       discussion: Optional[str] = None) -> None:
+                       discussion: Optional[str] = None, fmt: str = "png") -> None:
     """report.md and the figures in folder out. rows: the cases' table rows
     (cases.csv), table: per (load, size) (summary.csv), fits: the fractal law
     per load; damping_rows and discussion, if given, are appended."""
@@ -172,21 +167,21 @@ def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_ro
     figs = []
     for load in loads:
         ends = sorted({sizes[0], sizes[-1]})
-        specimen_curves_figure(groups, load, ends, os.path.join(out, f"curves_{load}.png"))
-        mean_curves_figure(groups, load, sizes, os.path.join(out, f"mean_curves_{load}.png"))
-        cracks_figure(cases, load, sizes, os.path.join(out, f"cracks_{load}.png"))
-        fracture_energy_figure(cases, load, sizes, os.path.join(out, f"fracture_energy_{load}.png"))
-        figs += [(f"curves_{load}.png", f"every specimen and the mean, {load}"),
-                 (f"mean_curves_{load}.png", f"mean curves of all sizes, {load}"),
-                 (f"cracks_{load}.png", f"crack pictures (central slice, seed 1), {load}"),
-                 (f"fracture_energy_{load}.png", f"U_frac/U_min against mean strain (log) to separation, {load}")]
+        specimen_curves_figure(groups, load, ends, os.path.join(out, f"curves_{load}.{fmt}"))
+        mean_curves_figure(groups, load, sizes, os.path.join(out, f"mean_curves_{load}.{fmt}"))
+        cracks_figure(cases, load, sizes, os.path.join(out, f"cracks_{load}.{fmt}"))
+        fracture_energy_figure(cases, load, sizes, os.path.join(out, f"fracture_energy_{load}.{fmt}"))
+        figs += [(f"curves_{load}.{fmt}", f"every specimen and the mean, {load}"),
+                 (f"mean_curves_{load}.{fmt}", f"mean curves of all sizes, {load}"),
+                 (f"cracks_{load}.{fmt}", f"crack pictures (central slice, seed 1), {load}"),
+                 (f"fracture_energy_{load}.{fmt}", f"U_frac/U_min against mean strain (log) to separation, {load}")]
     if fits:
-        fractal_figure(table, rows, fits, os.path.join(out, "fractal.png"))
-        figs.append(("fractal.png", "U_num against size, fractal law"))
-    write_report(out, cases, table, fits, figs, damping_rows, discussion)
+        fractal_figure(table, rows, fits, os.path.join(out, f"fractal.{fmt}"))
+        figs.append((f"fractal.{fmt}", "U_num against size, fractal law"))
+    write_report(out, cases, table, fits, figs, damping_rows, discussion, fmt)
 
 
-def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=None) -> None:
+def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=None, fmt="png") -> None:
     tests = [c.test for c in cases]
     first = cases[0].summary
     p = first["parameters"]
@@ -267,7 +262,7 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
                _md_table(["load", "size [m]", "zeta", "peak [MPa]", "strain at peak", "U_num/U_min"],
                          [[r["load"], f"{r['size_m']:g}", f"{r['zeta']:g}", f"{r['peak_stress_MPa']:.3f}",
                            f"{r['strain_at_peak']:.3e}", _num(r["U_ratio"], ".3f")] for r in rows]), ""]
-        figs += [(f"damping_{ld}.png", f"damping, {ld}") for ld in sorted(dict.fromkeys(r["load"] for r in rows))]
+        figs += [(f"damping_{ld}.{fmt}", f"damping, {ld}") for ld in sorted(dict.fromkeys(r["load"] for r in rows))]
     md += ["## Figures", ""] + [f"![{title}]({name})\n" for name, title in figs]
     if discussion:
         md += ["## Discussion", "", discussion.strip(), ""]

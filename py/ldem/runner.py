@@ -15,11 +15,11 @@ from .progress import ProgressBar
 
 
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
-             simulation=None) -> CubeResult:
+             simulation=None, figure_format: str = "png") -> CubeResult:
     """Runs test; with out, writes curve.csv (row by row), summary.json (also
     when the run fails or is interrupted: status says so) and, with plots,
-    curve.png, energies.png, cracks.png and bars.vtu. progress: a bar on stderr
-    (default: when stderr is a terminal)."""
+    curve, energies and cracks pictures (figure_format: png, pdf or svg) and
+    bars.vtu. progress: a bar on stderr (default: when stderr is a terminal)."""
     if out is not None:
         io.prepare_dir(out)
     bar = ProgressBar(test.final_strain, enabled=progress)
@@ -39,16 +39,18 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     if out is not None:
         io.write_summary(result.summary, os.path.join(out, "summary.json"))
         if plots:
-            write_pictures(result, out)
+            write_pictures(result, out, figure_format)
     return result
 
 
-def write_pictures(result: CubeResult, out: str) -> None:
+def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:
     from . import plots
 
-    plots.curve_figure(result, os.path.join(out, "curve.png"))
-    plots.energy_figure(result, os.path.join(out, "energies.png"))
-    plots.crack_figure(result.sim, os.path.join(out, "cracks.png"),
+    if fmt not in plots.FIGURE_FORMATS:
+        raise ValueError(f"unknown figure format '{fmt}' (expected one of {', '.join(plots.FIGURE_FORMATS)})")
+    plots.curve_figure(result, os.path.join(out, f"curve.{fmt}"))
+    plots.energy_figure(result, os.path.join(out, f"energies.{fmt}"))
+    plots.crack_figure(result.sim, os.path.join(out, f"cracks.{fmt}"),
                        title=f"{result.test.size:g} m cube, {result.test.load}, seed {result.test.seed}: "
                              f"mean strain {result.curve['mean_strain'][-1]:.2e}")
     io.write_vtu(result.sim, os.path.join(out, "bars.vtu"))

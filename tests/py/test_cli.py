@@ -151,3 +151,19 @@ def test_rerun_reproduces_a_folder_and_says_when_it_does_not(cli, tmp_path):
     assert r.returncode == 1 and "differs: peak_stress_MPa" in r.stdout, r.stdout
     r = cli("rerun", str(tmp_path / "nowhere"))
     assert r.returncode == 2 and "cannot read" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("fmt,magic", [("pdf", b"%PDF"), ("svg", b"<?xml")])
+def test_vector_figures(cli, tmp_path, fmt, magic):
+    """--figure-format pdf|svg: the three pictures as vector files, in the one ldem style."""
+    out = tmp_path / fmt
+    r = cli("cube", "--size", "0.04", "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(out),
+            "--no-progress", "--figure-format", fmt)
+    assert r.returncode == 0, r.stderr
+    for name in ("curve", "energies", "cracks"):
+        data = (out / f"{name}.{fmt}").read_bytes()
+        assert data.startswith(magic) and len(data) > 5000, name
+        assert not (out / f"{name}.png").exists()
+    svg_or_pdf = (out / f"curve.{fmt}").read_bytes()
+    if fmt == "svg":  # units on the axes (svg.fonttype none keeps the text as text)
+        assert b"mean strain [-]" in svg_or_pdf and b"normal stress [MPa]" in svg_or_pdf

@@ -69,7 +69,8 @@ def cmd_size_effect(args) -> int:
     _check_tests(tests)
     t0 = time.perf_counter()
     table, fits = run_size_effect(tests, args.out, jobs=args.jobs, scheduler=args.scheduler,
-                                  progress=False if args.no_progress else None, report=not args.no_report)
+                                  progress=False if args.no_progress else None, report=not args.no_report,
+                                  figure_format=args.figure_format)
     print(f"study: {len(tests)} cases in {time.perf_counter() - t0:.0f} s; wrote {args.out}/summary.csv, cases.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for r in table:
@@ -95,7 +96,8 @@ def cmd_damping(args) -> int:
     tests = damping_tests(args.size, zetas, _loads(args.loads), seed=args.seed, **common)
     _check_tests(tests)
     rows = run_damping(tests, args.out, jobs=args.jobs, scheduler=args.scheduler,
-                       progress=False if args.no_progress else None, report=not args.no_report)
+                       progress=False if args.no_progress else None, report=not args.no_report,
+                       figure_format=args.figure_format)
     for r in rows:
         print(f"  {r['load']:10s} zeta {r['zeta']:g}: peak {r['peak_stress_MPa']:.4f} MPa at "
               f"{r['strain_at_peak']:.4e}, U_num/U_min "
@@ -124,6 +126,8 @@ def add_parser(sub) -> None:
                             "(repeatable; see ldem cube --help)")
         q.add_argument("--no-progress", action="store_true", help="no progress bar")
         q.add_argument("--no-report", action="store_true", help="tables only: no figures, no report.md")
+        q.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
+                       help="format of the figures (pdf and svg: vector, for papers)")
 
     s = kinds.add_parser("size-effect", help="sizes x seeds x loads: tables, curves, cracks, energies, fractal fit",
                          formatter_class=argparse.ArgumentDefaultsHelpFormatter)

@@ -13,7 +13,7 @@ from .tables import CASE_COLUMNS, case_row
 
 
 def run_damping(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
-                progress: Optional[bool] = None, report: bool = True) -> List[dict]:
+                progress: Optional[bool] = None, report: bool = True, figure_format: str = "png") -> List[dict]:
     """Runs the cases not finished yet, writes damping.csv and (with report) the
     figures; returns the rows."""
     summaries = run_cases(tests, out, jobs=jobs, scheduler=scheduler, progress=progress)
@@ -22,5 +22,5 @@ def run_damping(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: O
     if report:
         from .. import report as figures
 
-        figures.damping_figures(out, [load_case(out, t) for t in tests])
+        figures.damping_figures(out, [load_case(out, t) for t in tests], figure_format)
     return rows

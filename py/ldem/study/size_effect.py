@@ -17,7 +17,7 @@ STUDY_SIZES = (0.12, 0.24, 0.48, 0.72, 0.96)
 
 
 def run_size_effect(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
-                    progress: Optional[bool] = None, report: bool = True) -> tuple:
+                    progress: Optional[bool] = None, report: bool = True, figure_format: str = "png") -> tuple:
     """Runs the cases not finished yet, writes the tables, fractal.json and
     (with report) report.md with its figures; returns (table, fits)."""
     summaries = run_cases(tests, out, jobs=jobs, scheduler=scheduler, progress=progress)
@@ -29,11 +29,11 @@ def run_size_effect(tests: Sequence[CubeTest], out: str, jobs: int = 1, schedule
     with open(os.path.join(out, "fractal.json"), "w") as f:
         json.dump(fits, f, indent=2)
     if report:
-        write_size_effect_report(out, tests, rows, table, fits)
+        write_size_effect_report(out, tests, rows, table, fits, figure_format)
     return table, fits
 
 
-def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, fits) -> None:
+def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, fits, fmt: str = "png") -> None:
     """report.md with the figures, the damping table if the damping study ran
     into the same folder, and discussion.md (hand-written) if there is one."""
     from .. import report
@@ -45,4 +45,4 @@ def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, f
             text = f.read()
     report.size_effect_report(out, [load_case(out, t) for t in tests], rows, table, fits,
                               damping_rows=io.read_table(damping_csv) if os.path.exists(damping_csv) else None,
-                              discussion=text)
+                              discussion=text, fmt=fmt)
