@@ -106,6 +106,16 @@ std::vector<double> Simulation::ruptureEnergies() const {
     return e;
 }
 
+std::vector<double> Simulation::barForces() const {
+    const std::vector<double> eps = barStrains(lat_, u_);
+    std::vector<double> f(lat_.numBars());
+    forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
+        const BarFamily& fam = lat_.families[row.family];
+        f[b] = hillerborgForce(eps[b], bars_.kappa[b], fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b]);
+    });
+    return f;
+}
+
 double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
 
 void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }

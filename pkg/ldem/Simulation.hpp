@@ -122,6 +122,8 @@ public:
     // Energy each bar dissipates when it breaks: A_f G_f, or 1/2 L EA eps_p^2 for a
     // bar clamped to perfectly brittle (the capacities of the cheapest cut).
     std::vector<double> ruptureEnergies() const;
+    // Axial force of every bar at the current state [N], tension positive (the law at its strain and kappa).
+    std::vector<double> barForces() const;
     const Material& material() const { return mat_; }
     const LoadingParams& loading() const { return load_; }
     const RunParams& runParams() const { return run_; }

@@ -57,8 +57,12 @@ def cmd_cube(args) -> int:
     progress = False if args.no_progress else None
     from .runner import run_cube
 
+    try:
+        snapshots = [float(x) for x in args.snapshots.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
     result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots,
-                      figure_format=args.figure_format)
+                      figure_format=args.figure_format, snapshots=snapshots)
     s = result.summary
     print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
           + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if test.load == "triangular" else ""))
@@ -79,7 +83,7 @@ def cmd_cube(args) -> int:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
     f = args.figure_format
     print(f"wrote {args.out}/: curve.csv summary.json" + ("" if args.no_plots else
-                                                           f" curve.{f} energies.{f} cracks.{f} bars.vtu"))
+                                                           f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
     if s["energy_error"]:
         print(f"ldem cube: failed: energy balance error {s['energy_balance_error']:.2e} is above the tolerance "
               f"{test.energy_tolerance:g}: energy was created or lost by the integration; the results are "
@@ -172,6 +176,9 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
     c.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
                    help="format of the pictures (pdf and svg: vector, for papers)")
+    c.add_argument("--snapshots", default="", metavar="STRAINS",
+                   help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
+                        "(comma-separated; the end state is always written)")
     c.set_defaults(func=cmd_cube)
 
     b = sub.add_parser("bench", help="time the time step of an N^3 cube (one line of JSON)",

@@ -54,29 +54,68 @@ def write_summary(summary: dict, path: str) -> None:
         f.write("\n")
 
 
-def write_vtu(sim, path: str) -> None:
-    """Every bar as a VTK line cell with its damage state and kappa/eps_r (ParaView)."""
+def write_vtu(sim, path: str, broken_only: bool = False) -> None:
+    """Every bar (or only the broken ones: the crack) as a VTK line cell, at its
+    reference position with the node displacements as a point vector (ParaView:
+    Warp By Vector), and per bar: damage_state (0 undamaged, 1 damaged, 2
+    broken), damage (kappa/eps_r), kappa, eps_r, strain, force [N], G_f, kind."""
     import meshio
 
     lat = sim.lattice
-    u = sim.displacement
     bars = lat.bar_table()
-    points = np.column_stack([lat.x0, lat.y0, lat.z0]) + u
-    kappa, eps_r = sim.kappa, sim.eps_r
-    cells = [("line", np.column_stack([bars["n1"], bars["n2"]]).astype(np.int64))]
-    mesh = meshio.Mesh(
-        points, cells,
-        point_data={"displacement": u},
-        cell_data={
-            "damage_state": [sim.damage_state.astype(np.int32)],
-            "damage": [np.minimum(kappa / eps_r, 1.0)],
-            "kappa": [kappa],
-            "eps_r": [eps_r],
-            "strain": [sim.bar_strain],
-            "G_f": [sim.fracture_energy_field],
-            "kind": [bars["kind"].astype(np.int32)],
-        })
+    kappa, eps_r, state = sim.kappa, sim.eps_r, sim.damage_state
+    keep = state == 2 if broken_only else np.ones(len(kappa), dtype=bool)
+    cells = [("line", np.column_stack([bars["n1"], bars["n2"]])[keep].astype(np.int64))]
+    per_bar = {
+        "damage_state": state.astype(np.int32),
+        "damage": np.minimum(kappa / eps_r, 1.0),
+        "kappa": kappa,
+        "eps_r": eps_r,
+        "strain": sim.bar_strain,
+        "force": sim.bar_force,
+        "G_f": sim.fracture_energy_field,
+        "kind": bars["kind"].astype(np.int32),
+    }
+    mesh = meshio.Mesh(np.column_stack([lat.x0, lat.y0, lat.z0]), cells,
+                       point_data={"displacement": sim.displacement},
+                       cell_data={k: [v[keep]] for k, v in per_bar.items()})
     meshio.write(path, mesh, file_format="vtu")
+
+
+def write_pvd(path: str, frames) -> None:
+    """A ParaView collection: frames are (time, file name relative to path's
+    folder); ParaView's time is the mean strain."""
+    rows = "".join(f'    <DataSet timestep="{t!r}" group="" part="0" file="{name}"/>\n' for t, name in frames)
+    with open(path, "w") as f:
+        f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
+                f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
+
+
+class Snapshots:
+    """An observer of CubeTest.run: bars_NNNN.vtu and crack_NNNN.vtu (the
+    broken bars) when the mean strain first reaches each of `strains`; finish()
+    adds the final state (bars.vtu, crack.vtu) and writes bars.pvd and
+    crack.pvd, the time series ParaView opens."""
+
+    def __init__(self, sim, out: str, strains=()):
+        self.sim, self.out, self.todo = sim, out, sorted(strains)
+        self.frames = []
+
+    def __call__(self, row: dict) -> None:
+        while self.todo and row["mean_strain"] >= self.todo[0]:
+            self.todo.pop(0)
+            k = len(self.frames)
+            self._write(row["mean_strain"], f"bars_{k:04d}.vtu", f"crack_{k:04d}.vtu")
+
+    def _write(self, strain, bars, crack):
+        write_vtu(self.sim, os.path.join(self.out, bars))
+        write_vtu(self.sim, os.path.join(self.out, crack), broken_only=True)
+        self.frames.append((strain, bars, crack))
+
+    def finish(self, final_strain: float) -> None:
+        self._write(final_strain, "bars.vtu", "crack.vtu")
+        write_pvd(os.path.join(self.out, "bars.pvd"), [(t, b) for t, b, _ in self.frames])
+        write_pvd(os.path.join(self.out, "crack.pvd"), [(t, c) for t, _, c in self.frames])
 
 
 def write_slice(path: str, segments, states) -> None:

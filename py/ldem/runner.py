@@ -7,7 +7,7 @@ progress bar and the pictures (used by `ldem cube`, the studies and scripts).
 from __future__ import annotations
 
 import os
-from typing import Optional
+from typing import Optional, Sequence
 
 from . import io
 from .cube import CubeResult, CubeTest
@@ -15,18 +15,24 @@ from .progress import ProgressBar
 
 
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
-             simulation=None, figure_format: str = "png") -> CubeResult:
+             simulation=None, figure_format: str = "png", snapshots: Sequence[float] = ()) -> CubeResult:
     """Runs test; with out, writes curve.csv (row by row), summary.json (also
     when the run fails or is interrupted: status says so) and, with plots,
     curve, energies and cracks pictures (figure_format: png, pdf or svg) and
-    bars.vtu. progress: a bar on stderr (default: when stderr is a terminal)."""
+    the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu at each mean strain of
+    `snapshots`, bars.vtu and crack.vtu at the end, bars.pvd and crack.pvd.
+    progress: a bar on stderr (default: when stderr is a terminal)."""
+    if any(not (s > 0) for s in snapshots):
+        raise ValueError(f"snapshot strains must be positive (got {list(snapshots)})")
     if out is not None:
         io.prepare_dir(out)
+    sim = simulation if simulation is not None else test.simulation()
     bar = ProgressBar(test.final_strain, enabled=progress)
     csv = io.CurveCsv(os.path.join(out, "curve.csv")) if out is not None else None
-    observers = [o for o in (csv, bar) if o is not None]
+    series = io.Snapshots(sim, out, snapshots) if out is not None and plots else None
+    observers = [o for o in (csv, bar, series) if o is not None]
     try:
-        result = test.run(observers, simulation=simulation)
+        result = test.run(observers, simulation=sim)
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
         if out is not None and partial is not None:
@@ -40,6 +46,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         io.write_summary(result.summary, os.path.join(out, "summary.json"))
         if plots:
             write_pictures(result, out, figure_format)
+            series.finish(float(result.curve["mean_strain"][-1]))
     return result
 
 
@@ -53,4 +60,3 @@ def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:
     plots.crack_figure(result.sim, os.path.join(out, f"cracks.{fmt}"),
                        title=f"{result.test.size:g} m cube, {result.test.load}, seed {result.test.seed}: "
                              f"mean strain {result.curve['mean_strain'][-1]:.2e}")
-    io.write_vtu(result.sim, os.path.join(out, "bars.vtu"))

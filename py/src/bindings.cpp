@@ -262,6 +262,8 @@ PYBIND11_MODULE(_core, m) {
                 return toNumpy(st);
             },
             "per bar: UNDAMAGED (kappa <= eps_p), DAMAGED, or BROKEN (kappa >= eps_r)")
+        .def_property_readonly("bar_force", [](const Simulation& s) { return toNumpy(s.barForces()); },
+                               "axial force of every bar [N], tension positive")
         .def_property_readonly("bar_strain", [](const Simulation& s) { return toNumpy(barStrains(s.lattice(), s.displacements())); })
         .def_property_readonly("displacement", [](const Simulation& s) {
             const Field3& u = s.displacements();

@@ -329,7 +329,8 @@ def test_bars_vtu_fields_match_the_run(tmp_path):
     r = ldem.run_cube(ldem.CubeTest(**FAST, seed=2, threads=1), out=str(tmp_path))
     sim, s = r.sim, r.summary
     mesh = meshio.read(tmp_path / "bars.vtu")
-    assert sorted(mesh.cell_data) == sorted(["damage_state", "damage", "kappa", "eps_r", "strain", "G_f", "kind"])
+    assert sorted(mesh.cell_data) == sorted(["damage_state", "damage", "kappa", "eps_r", "strain", "force", "G_f",
+                                             "kind"])
     assert list(mesh.point_data) == ["displacement"]
     assert len(mesh.cells) == 1 and mesh.cells[0].type == "line"
     bars = sim.lattice.bar_table()
@@ -339,11 +340,20 @@ def test_bars_vtu_fields_match_the_run(tmp_path):
     assert all(len(v) == s["n_bars"] for v in cd.values())
     u = sim.displacement
     assert np.array_equal(mesh.point_data["displacement"], u)
-    assert np.array_equal(mesh.points, np.column_stack([sim.lattice.x0, sim.lattice.y0, sim.lattice.z0]) + u)
+    # Reference positions, the displacement as a point vector (ParaView: Warp By Vector).
+    assert np.array_equal(mesh.points, np.column_stack([sim.lattice.x0, sim.lattice.y0, sim.lattice.z0]))
     for name, value in (("kappa", sim.kappa), ("eps_r", sim.eps_r), ("strain", sim.bar_strain),
                         ("G_f", sim.fracture_energy_field), ("kind", bars["kind"])):
         assert np.array_equal(cd[name], value), name
     assert np.array_equal(cd["damage"], np.minimum(sim.kappa / sim.eps_r, 1.0))
+    # The force: EA eps on the elastic branch (EA from an intact bar's force over its strain
+    # is the same for all bars of a kind and share), none in a broken bar in tension.
+    force, strain = cd["force"], cd["strain"]
+    broken_open = (cd["damage_state"] == 2) & (strain > 0)
+    assert np.all(force[broken_open] == 0) and broken_open.any()
+    elastic = (cd["kappa"] <= sim.eps_p) & (np.abs(strain) > 1e-9)
+    ea = force[elastic] / strain[elastic]
+    assert np.all(ea > 0) and len(np.unique(np.round(ea, -3))) <= 12  # a few families x shares
     # The damage states: as LDEM_SPEC defines them, and counted as the last row counts them.
     state, kappa = cd["damage_state"], cd["kappa"]
     assert np.array_equal(state == 2, kappa >= cd["eps_r"])
@@ -354,3 +364,28 @@ def test_bars_vtu_fields_match_the_run(tmp_path):
     top = sim.group("top")
     assert u[top, 2].mean() / s["parameters"]["size"] == pytest.approx(r.curve["mean_strain"][-1], rel=1e-12)
     assert s["stop_reason"] == "load_lost"
+
+
+def test_paraview_series(cli, tmp_path):
+    """README: --snapshots writes bars_NNNN.vtu and crack_NNNN.vtu (the broken bars)
+    when the mean strain reaches each value, bars.pvd and crack.pvd list them with
+    the end state, the mean strain as ParaView's time."""
+    import xml.etree.ElementTree as ET
+
+    import meshio
+
+    out = tmp_path / "pv"
+    r = cli("cube", "--size", "0.06", "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(out),
+            "--no-progress", "--snapshots", "1e-4,3e-4")
+    assert r.returncode == 0, r.stderr
+    frames = [(float(d.get("timestep")), d.get("file")) for d in ET.parse(out / "bars.pvd").getroot().iter("DataSet")]
+    assert [f for _, f in frames] == ["bars_0000.vtu", "bars_0001.vtu", "bars.vtu"]
+    assert 1e-4 <= frames[0][0] < frames[1][0] and 3e-4 <= frames[1][0] <= frames[2][0]
+    crack = [d.get("file") for d in ET.parse(out / "crack.pvd").getroot().iter("DataSet")]
+    assert crack == ["crack_0000.vtu", "crack_0001.vtu", "crack.vtu"]
+    first, last = meshio.read(out / "bars_0000.vtu"), meshio.read(out / "bars.vtu")
+    assert np.array_equal(first.points, last.points)  # reference positions in every frame
+    assert np.abs(first.point_data["displacement"]).max() < np.abs(last.point_data["displacement"]).max()
+    end_crack = meshio.read(out / "crack.vtu")
+    assert np.all(end_crack.cell_data["damage_state"][0] == 2)
+    assert len(end_crack.cells[0].data) == (last.cell_data["damage_state"][0] == 2).sum() > 0
