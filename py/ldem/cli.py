@@ -6,6 +6,7 @@ import argparse
 import dataclasses
 import os
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -207,10 +208,20 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
+class Terminated(KeyboardInterrupt):
+    """SIGTERM, handled as Ctrl-C is: the run stops at its next record and
+    leaves a summary that says it was interrupted."""
+
+
+def _terminate(signum, frame):
+    raise Terminated()
+
+
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     from . import _core
 
+    signal.signal(signal.SIGTERM, _terminate)
     try:
         return args.func(args)
     except ValueError as e:  # bad input, found before anything runs
@@ -219,6 +230,12 @@ def main(argv=None) -> int:
     except _core.InstabilityError as e:
         print(f"ldem {args.command}: failed: {e} (rows so far are kept in the output folder)", file=sys.stderr)
         return EXIT_FAILED
-    except KeyboardInterrupt:
-        print(f"ldem {args.command}: interrupted (rows so far are kept in the output folder)", file=sys.stderr)
-        return 130
+    except OSError as e:  # a full disk, a file size limit, a folder gone
+        where = f"cannot write {e.filename}" if e.filename else "cannot write"
+        print(f"ldem {args.command}: failed: {where}: {e.strerror or e} (summary.json does not say done)",
+              file=sys.stderr)
+        return EXIT_FAILED
+    except KeyboardInterrupt as e:
+        how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
+        print(f"ldem {args.command}: {how} (rows so far are kept in the output folder)", file=sys.stderr)
+        return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)

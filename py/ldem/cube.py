@@ -129,6 +129,7 @@ class CubeResult:
         self.summary = _summary_dict(test, sim, self.curve, summary, wall_s, self.status)
         if error is not None:
             self.summary["error"] = str(error) or type(error).__name__
+            self.summary["stop_reason"] = self.status
 
     @property
     def peak_stress_MPa(self) -> float:

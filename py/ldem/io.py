@@ -3,6 +3,7 @@ bars.vtu. Writers take data (rows, the summary dict, the final state); nothing
 here computes physics."""
 from __future__ import annotations
 
+import contextlib
 import csv
 import json
 import os
@@ -11,6 +12,29 @@ from typing import List, Sequence
 import numpy as np
 
 from .cube import CURVE_COLUMNS
+
+
+@contextlib.contextmanager
+def atomic(path: str):
+    """Yields a temporary name beside path (same extension); renamed to path
+    when the block ends without error, removed otherwise: a file is whole or
+    absent, never cut by a full disk or a kill."""
+    folder, base = os.path.split(path)
+    tmp = os.path.join(folder, f".{base}.{os.getpid()}.tmp{os.path.splitext(base)[1]}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    except BaseException as e:
+        with contextlib.suppress(OSError):
+            os.remove(tmp)
+        if isinstance(e, OSError):
+            raise _naming(e, path) from e
+        raise
+
+
+def _naming(e: OSError, path: str) -> OSError:
+    """The same error, naming the file the user knows (not a temporary one)."""
+    return OSError(e.errno, e.strerror or str(e), path)
 
 
 def prepare_dir(path: str) -> None:
@@ -36,20 +60,27 @@ class CurveCsv:
     CubeTest.run."""
 
     def __init__(self, path: str):
+        self.path = path
         self._f = open(path, "w")
-        self._f.write(",".join(CURVE_COLUMNS) + "\n")
-        self._f.flush()
+        self._write(",".join(CURVE_COLUMNS) + "\n")
 
     def __call__(self, row: dict) -> None:
-        self._f.write(",".join(_cell(row[c]) for c in CURVE_COLUMNS) + "\n")
-        self._f.flush()
+        self._write(",".join(_cell(row[c]) for c in CURVE_COLUMNS) + "\n")
+
+    def _write(self, line: str) -> None:
+        try:
+            self._f.write(line)
+            self._f.flush()
+        except OSError as e:
+            raise _naming(e, self.path) from e
 
     def close(self) -> None:
-        self._f.close()
+        with contextlib.suppress(OSError):  # a row cut by a full disk was reported already
+            self._f.close()
 
 
 def write_summary(summary: dict, path: str) -> None:
-    with open(path, "w") as f:
+    with atomic(path) as tmp, open(tmp, "w") as f:
         json.dump(summary, f, indent=2)
         f.write("\n")
 
@@ -79,14 +110,15 @@ def write_vtu(sim, path: str, broken_only: bool = False) -> None:
     mesh = meshio.Mesh(np.column_stack([lat.x0, lat.y0, lat.z0]), cells,
                        point_data={"displacement": sim.displacement},
                        cell_data={k: [v[keep]] for k, v in per_bar.items()})
-    meshio.write(path, mesh, file_format="vtu")
+    with atomic(path) as tmp:
+        meshio.write(tmp, mesh, file_format="vtu")
 
 
 def write_pvd(path: str, frames) -> None:
     """A ParaView collection: frames are (time, file name relative to path's
     folder); ParaView's time is the mean strain."""
     rows = "".join(f'    <DataSet timestep="{t!r}" group="" part="0" file="{name}"/>\n' for t, name in frames)
-    with open(path, "w") as f:
+    with atomic(path) as tmp, open(tmp, "w") as f:
         f.write('<?xml version="1.0"?>\n<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">\n'
                 f"  <Collection>\n{rows}  </Collection>\n</VTKFile>\n")
 
@@ -120,7 +152,8 @@ class Snapshots:
 
 def write_slice(path: str, segments, states) -> None:
     """The central slice of a run (plots.central_slice), for study figures."""
-    np.savez_compressed(path, segments=np.asarray(segments, dtype=np.float32), states=states)
+    with atomic(path) as tmp:
+        np.savez_compressed(tmp, segments=np.asarray(segments, dtype=np.float32), states=states)
 
 
 def read_slice(path: str) -> tuple:
@@ -139,11 +172,16 @@ def read_curve(path: str) -> dict:
 
 
 def write_table(path: str, rows: Sequence[dict], columns: Sequence[str]) -> None:
-    with open(path, "w", newline="") as f:
+    with atomic(path) as tmp, open(tmp, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(columns), extrasaction="ignore")
         w.writeheader()
         for r in rows:
             w.writerow({k: (f"{v:.6g}" if isinstance(v, float) else v) for k, v in r.items()})
+
+
+def write_text(path: str, text: str) -> None:
+    with atomic(path) as tmp, open(tmp, "w") as f:
+        f.write(text)
 
 
 def read_table(path: str) -> List[dict]:

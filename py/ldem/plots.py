@@ -22,9 +22,14 @@ STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
 
 
 def save(fig, path: str) -> None:
-    """Writes fig in the format of path's extension, then frees it."""
-    fig.savefig(path)
-    plt.close(fig)
+    """Writes fig (whole, or not at all) in the format of path's extension, then frees it."""
+    from .io import atomic
+
+    try:
+        with atomic(path) as tmp:
+            fig.savefig(tmp, format=os.path.splitext(path)[1][1:])
+    finally:
+        plt.close(fig)
 
 
 # The study's colours.

@@ -12,7 +12,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
-from . import plots  # noqa: E402
+from . import io, plots  # noqa: E402
 from .curves import mean_curve  # noqa: E402
 
 
@@ -266,5 +266,4 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
     md += ["## Figures", ""] + [f"![{title}]({name})\n" for name, title in figs]
     if discussion:
         md += ["## Discussion", "", discussion.strip(), ""]
-    with open(os.path.join(out, "report.md"), "w") as f:
-        f.write("\n".join(md) + "\n")
+    io.write_text(os.path.join(out, "report.md"), "\n".join(md) + "\n")

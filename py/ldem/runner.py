@@ -6,6 +6,7 @@ progress bar and the pictures (used by `ldem cube`, the studies and scripts).
 """
 from __future__ import annotations
 
+import contextlib
 import os
 from typing import Optional, Sequence
 
@@ -36,18 +37,31 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
         if out is not None and partial is not None:
-            io.write_summary(partial.summary, os.path.join(out, "summary.json"))
+            _summary_after_failure(partial.summary, out)
         raise
     finally:
         bar.close()
         if csv is not None:
             csv.close()
     if out is not None:
-        io.write_summary(result.summary, os.path.join(out, "summary.json"))
-        if plots:
-            write_pictures(result, out, figure_format)
-            series.finish(float(result.curve["mean_strain"][-1]))
+        try:
+            if plots:
+                write_pictures(result, out, figure_format)
+                series.finish(float(result.curve["mean_strain"][-1]))
+        except BaseException as e:  # the run is done, its outputs are not: the summary says so
+            result.summary.update(status="interrupted" if isinstance(e, KeyboardInterrupt) else "failed",
+                                  error=f"writing the outputs: {e}")
+            _summary_after_failure(result.summary, out)
+            raise
+        io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
     return result
+
+
+def _summary_after_failure(summary: dict, out: str) -> None:
+    """The summary of a run that failed or was interrupted, if the disk takes
+    it; the first error is the one reported."""
+    with contextlib.suppress(OSError):
+        io.write_summary(summary, os.path.join(out, "summary.json"))
 
 
 def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:

@@ -128,6 +128,51 @@ def test_cube_exits_130_on_sigint_and_keeps_rows(tmp_path):
     assert s["peak_stress_MPa"] == pytest.approx(rows[:, 3].max(), rel=1e-9) and s["peak_stress_MPa"] > 2
 
 
+def test_sigterm_is_an_interruption_with_its_summary(tmp_path):
+    """SIGTERM (a batch system's kill) as Ctrl-C: exit 143, the rows kept, and a
+    summary that says interrupted, never done."""
+    out = tmp_path / "term"
+    proc = start([PY, LDEM_SCRIPT, "cube", "--out", str(out), "--no-progress", "--size", "0.08", "--threads", "1"])
+    try:
+        wait_for(lambda: data_rows(out / "curve.csv") >= 150, proc, what="150 rows of curve.csv")
+        proc.send_signal(signal.SIGTERM)
+        stdout, stderr = proc.communicate(timeout=60)
+    finally:
+        stop(proc)
+    assert proc.returncode == 128 + signal.SIGTERM, stderr
+    assert stderr.strip().splitlines()[-1] == \
+        "ldem cube: terminated (SIGTERM) (rows so far are kept in the output folder)", stderr
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "interrupted" and s["stop_reason"] == "interrupted"
+    _, rows = read_rows(out / "curve.csv")
+    assert s["steps"] >= rows[-1, 0] and len(rows) >= 150
+
+
+def test_a_full_disk_is_one_line_and_no_summary_says_done(tmp_path):
+    """A file size limit (ulimit -f) cuts curve.csv: one line naming the file,
+    exit 1, and summary.json says failed, never done; nothing half-written
+    under another name is left behind."""
+    import resource
+
+    out = tmp_path / "full"
+    limit = 40 * 1024
+
+    def small_files():
+        resource.setrlimit(resource.RLIMIT_FSIZE, (limit, limit))
+
+    r = subprocess.run([PY, LDEM_SCRIPT, "cube", "--out", str(out), "--no-progress", "--size", "0.06",
+                        "--strain-rate", "0.5"], capture_output=True, text=True, env=subprocess_env(),
+                       preexec_fn=small_files, timeout=600)
+    assert r.returncode == 1, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"ldem cube: failed: cannot write {out / 'curve.csv'}: ")
+    assert "Traceback" not in r.stderr
+    s = json.loads((out / "summary.json").read_text())
+    assert s["status"] == "failed" and "File too large" in s["error"]
+    assert (out / "curve.csv").stat().st_size == limit
+    assert sorted(p.name for p in out.iterdir()) == ["curve.csv", "summary.json"]
+
+
 # -- a study resumes after a real kill ---------------------------------------------
 STUDY = ["study", "size-effect", "--sizes", "0.04,0.08", "--seeds", "1", "--loads", "uniform", "--jobs", "1",
          "--threads", "1", "--strain-rate", "0.1", "--set", "stop_at=load_loss", "--no-progress", "--no-report"]

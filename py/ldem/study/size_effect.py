@@ -26,8 +26,7 @@ def run_size_effect(tests: Sequence[CubeTest], out: str, jobs: int = 1, schedule
     table = aggregate(rows, tests[0].c_a, load_curves(out, tests))
     io.write_table(os.path.join(out, "summary.csv"), table, SUMMARY_COLUMNS)
     fits = fractal_fits(table)
-    with open(os.path.join(out, "fractal.json"), "w") as f:
-        json.dump(fits, f, indent=2)
+    io.write_text(os.path.join(out, "fractal.json"), json.dumps(fits, indent=2))
     if report:
         write_size_effect_report(out, tests, rows, table, fits, figure_format)
     return table, fits
