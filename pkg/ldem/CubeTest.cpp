@@ -124,6 +124,9 @@ void setParameter(CubeTestParams& p, const std::string& name, const ParamValue& 
 int CubeGeometry::modules() const {
     LDEM_GEOMETRY_PARAMETERS(LDEM_CHECK_MEMBER)
     const double n = size / L0;
+    if (n > 1e5)  // 1e15 modules: far beyond memory; and no overflow in the cast below
+        throw std::invalid_argument("cube size " + formatNumber(size) + " m is " + formatNumber(n) +
+                                    " modules of L0 = " + formatNumber(L0) + " m a side: far beyond any machine");
     if (std::abs(n - std::round(n)) > 1e-9 * std::max(1.0, n))
         throw std::invalid_argument("cube size " + formatNumber(size) + " m is not a multiple of L0 = " +
                                     formatNumber(L0) + " m");

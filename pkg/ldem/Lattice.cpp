@@ -1,5 +1,9 @@
 #include "ldem/Lattice.hpp"
 
+#include <unistd.h>
+
+#include <sstream>
+
 #include <algorithm>
 #include <cmath>
 #include <tuple>
@@ -75,6 +79,21 @@ std::array<std::vector<double>, 3> nodePositions(const Lattice& lat) {
     return x;
 }
 
+std::int64_t memoryEstimate(int nx, int ny, int nz) { return kBytesPerBar * expectedBarCount(nx, ny, nz); }
+
+void checkMemory(int nx, int ny, int nz) {
+    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
+    if (pages <= 0 || pageSize <= 0) return;  // unknown: let the allocation decide
+    const double need = double(memoryEstimate(nx, ny, nz)), have = double(pages) * double(pageSize);
+    if (need > have) {
+        std::ostringstream msg;
+        msg.precision(3);
+        msg << "a lattice of " << nx << " x " << ny << " x " << nz << " modules (" << expectedBarCount(nx, ny, nz)
+            << " bars) needs about " << need / 1e9 << " GB; this machine has " << have / 1e9 << " GB";
+        throw std::invalid_argument(msg.str());
+    }
+}
+
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) {
     if (nx < 1 || ny < 1 || nz < 1)
         throw std::invalid_argument("a lattice needs at least one module per direction");
@@ -83,6 +102,7 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
     m.validate();
     if (expectedBarCount(nx, ny, nz) > std::int64_t(INT32_MAX))
         throw std::invalid_argument("lattice too large for 32-bit node ids");
+    checkMemory(nx, ny, nz);
 
     Lattice lat;
     lat.nx = nx, lat.ny = ny, lat.nz = nz, lat.L0 = L0;

@@ -116,6 +116,13 @@ std::array<std::vector<double>, 3> nodePositions(const Lattice& lat);
 // Node and bar counts of an nx x ny x nz lattice (spec section 1).
 std::int64_t expectedNodeCount(int nx, int ny, int nz);
 std::int64_t expectedBarCount(int nx, int ny, int nz);
+// Memory a run of such a lattice takes: ldem-bench's peak resident size per bar
+// is 63 B at 24^3 and 48^3 (lattice, state, Lanczos); with a margin.
+constexpr std::int64_t kBytesPerBar = 100;
+std::int64_t memoryEstimate(int nx, int ny, int nz);
+// Throws std::invalid_argument, before anything is allocated, if the estimate
+// is above the machine's physical memory.
+void checkMemory(int nx, int ny, int nz);
 
 // Builds the lattice of nx x ny x nz modules of side L0 with the bar areas of
 // the Nayfeh-Hefzy equivalence for material m and lumped masses rho L0^3

@@ -2,6 +2,7 @@
 // partial sums are added in block order, so a sum is bit-identical whatever
 // the number of OpenMP threads (no floating-point atomics, no thread-order sums).
 #pragma once
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <vector>
@@ -32,10 +33,12 @@ std::array<double, K> blockSum(std::int64_t n, Add add) {
     return total;
 }
 
-// threads <= 0: all the machine's cores (not whatever an earlier run set).
+// threads <= 0: all the machine's cores (not whatever an earlier run set);
+// more threads than cores are clamped to the cores (oversubscribed OpenMP
+// threads wait at every barrier for one another: a run 100 times slower).
 inline void setThreads(int threads) {
 #ifdef _OPENMP
-    omp_set_num_threads(threads > 0 ? threads : omp_get_num_procs());
+    omp_set_num_threads(threads > 0 ? std::min(threads, omp_get_num_procs()) : omp_get_num_procs());
 #else
     (void)threads;
 #endif

@@ -26,11 +26,14 @@
     X(double, L0, "L0", 0.02, "m", Domain::positive(), "side of a cubic module")
 
 /* nu >= 0.5 is incompressible and delta = 9nu/(4-8nu) blows up; nu < 0 makes
-   the diagonal area negative: the lattice cannot represent either. */
+   the diagonal area negative; nu = 0 gives the diagonals no area, and the
+   normal bars alone have no shear stiffness (a mechanism): the lattice
+   represents none of these. E and rho beyond any solid would overflow the
+   energies (E A L eps^2, rho L0^3 v^2). */
 #define LDEM_MATERIAL_PARAMETERS(X)                                                                          \
-    X(double, E, "E", 3.5e10, "Pa", Domain::positive(), "Young's modulus")                                     \
-    X(double, nu, "nu", 0.25, "", Domain::closedOpen(0, 0.5), "Poisson's ratio")                              \
-    X(double, rho, "rho", 2400.0, "kg/m^3", Domain::positive(), "density")                                     \
+    X(double, E, "E", 3.5e10, "Pa", Domain::openClosed(0, 1e14), "Young's modulus")                           \
+    X(double, nu, "nu", 0.25, "", Domain::open(0, 0.5), "Poisson's ratio")                                    \
+    X(double, rho, "rho", 2400.0, "kg/m^3", Domain::openClosed(0, 1e6), "density")                             \
     X(double, GfMean, "Gf_mean", 100.0, "N/m", Domain::positive(), "mean specific fracture energy E[G_f]")     \
     X(double, GfCV, "Gf_cv", 1.0, "", Domain::closed(0, 10), "coefficient of variation of G_f (1 = 100%)")     \
     X(double, corrLength, "corr_length", 0.0, "m", Domain::atLeast(0),                                         \
@@ -91,6 +94,7 @@ struct Domain {
     static Domain closed(double a, double b) { return {a, b, true, true, {}}; }
     static Domain closedOpen(double a, double b) { return {a, b, true, false, {}}; }
     static Domain openClosed(double a, double b) { return {a, b, false, true, {}}; }
+    static Domain open(double a, double b) { return {a, b, false, false, {}}; }
     static Domain choices(std::vector<std::string> n) { return {0, 0, true, true, std::move(n)}; }
 
     bool isChoice() const { return !names.empty(); }

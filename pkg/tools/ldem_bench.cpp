@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -59,7 +60,15 @@ int main(int argc, char** argv) {
     ldem::RunParams run;
     run.threads = threads;
     const auto t0 = std::chrono::steady_clock::now();
-    ldem::Simulation sim(modules, modules, modules, 0.02, ldem::Material{}, ldem::LoadingParams{}, run);
+    std::unique_ptr<ldem::Simulation> built;
+    try {
+        built = std::make_unique<ldem::Simulation>(modules, modules, modules, 0.02, ldem::Material{},
+                                                   ldem::LoadingParams{}, run);
+    } catch (const std::invalid_argument& e) {  // e.g. more memory than the machine has: one line
+        std::fprintf(stderr, "ldem-bench: error: %s\n", e.what());
+        return 2;
+    }
+    ldem::Simulation& sim = *built;
     const double setup = seconds(t0);
 
     // Each repetition: `steps` whole steps (bar pass, node pass, integration,

@@ -55,6 +55,11 @@ def cube_from_args(args) -> "CubeTest":
 
 def cmd_cube(args) -> int:
     test = cube_from_args(args)
+    test.params()  # every input checked before the warnings below and before any output
+    cores = os.cpu_count() or 1
+    if test.threads > cores:
+        print(f"ldem cube: warning: --threads {test.threads} is more than the {cores} cores: using {cores}",
+              file=sys.stderr)
     progress = False if args.no_progress else None
     from .runner import run_cube
 

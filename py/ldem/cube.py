@@ -186,7 +186,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "damping_coefficient_1_s": sim.damping_coefficient,
         "ramp_time_s": sim.ramp_time,
         "split_window_s": sim.split_window,
-        "threads": test.threads or _core.max_threads(),
+        "threads": _core.max_threads(),  # those the run used: at most the cores (Parallel.hpp)
         "wall_s": wall_s,
         "provenance": provenance(),
         "parameters": test.parameters(),

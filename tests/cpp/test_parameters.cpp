@@ -79,7 +79,7 @@ TEST(Parameters, BadNamesTypesAndValuesAreOneLineErrorsNamingTheParameter) {
     EXPECT_EQ(message([&] { setParameter(p, "E", std::string("abc")); }), "E must be a number (got 'abc')");
     EXPECT_EQ(message([&] { setParameter(p, "threads", 1.5); }), "threads must be a whole number");
     p.material.nu = 0.5;
-    EXPECT_EQ(message([&] { p.validate(); }), "nu must be in [0, 0.5) (got 0.5)");
+    EXPECT_EQ(message([&] { p.validate(); }), "nu must be in (0, 0.5) (got 0.5)");
     p.material.nu = 0.25, p.run.dtSafety = 0;
     EXPECT_EQ(message([&] { p.validate(); }), "dt_safety must be in (0, 1] (got 0)");
     p.run.dtSafety = 0.4, p.loading.strainRate = std::nan("");

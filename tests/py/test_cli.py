@@ -10,8 +10,13 @@ from conftest import FAST, ROOT, colour_share, picture
 BAD_INPUT = [
     (["--size", "-0.12"], "size must be > 0 (got -0.12 m)"),
     (["--size", "0.13"], "not a multiple of L0"),
-    (["--nu", "0.5"], "nu must be in [0, 0.5)"),
-    (["--nu", "0.7"], "nu must be in [0, 0.5)"),
+    (["--nu", "0.5"], "nu must be in (0, 0.5)"),
+    (["--nu", "0.7"], "nu must be in (0, 0.5)"),
+    (["--nu", "0"], "nu must be in (0, 0.5) (got 0)"),  # no diagonals: a mechanism
+    (["--E", "1e300"], "E must be in (0, 1e+14] (got 1e+300 Pa)"),
+    (["--size", "1e300"], "far beyond any machine"),
+    (["--size", "8"], "modules (896481200 bars) needs about 89.6 GB; this machine has"),  # 400^3: checked first
+    (["--threads", "99999999999"], "threads is out of range"),
     (["--Gf-cv", "-0.1"], "Gf_cv must be in [0, 10] (got -0.1)"),
     (["--load", "shear"], "invalid choice"),
     (["--Gf-draw", "cell"], "invalid choice"),
@@ -167,3 +172,21 @@ def test_vector_figures(cli, tmp_path, fmt, magic):
     svg_or_pdf = (out / f"curve.{fmt}").read_bytes()
     if fmt == "svg":  # units on the axes (svg.fonttype none keeps the text as text)
         assert b"mean strain [-]" in svg_or_pdf and b"normal stress [MPa]" in svg_or_pdf
+
+
+def test_more_threads_than_cores_are_clamped_with_a_warning(cli, tmp_path):
+    import os
+
+    out = tmp_path / "t"
+    r = cli("cube", "--size", "0.04", "--strain-rate", "0.5", "--stop-at", "load_loss", "--threads", "1000",
+            "--out", str(out), "--no-progress", "--no-plots")
+    cores = os.cpu_count()
+    assert r.returncode == 0, r.stderr
+    assert r.stderr.strip() == f"ldem cube: warning: --threads 1000 is more than the {cores} cores: using {cores}"
+    assert json.loads((out / "summary.json").read_text())["threads"] == cores
+
+
+def test_bench_too_big_for_the_machine_is_one_line(cli):
+    r = cli("bench", "--modules", "400", "--steps", "1", "--repeats", "1")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "this machine has" in r.stderr, r.stderr
+

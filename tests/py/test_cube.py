@@ -189,7 +189,7 @@ def test_cube_test_fields_are_the_parameter_table():
     ({"E": "abc"}, "E must be a number (got 'abc')"),
     ({"seed": 1.5}, "seed must be int (got 1.5)"),
     ({"load": "shear"}, "unknown load 'shear' (expected uniform or triangular)"),
-    ({"nu": 0.5}, r"nu must be in [0, 0.5) (got 0.5)"),
+    ({"nu": 0.5}, r"nu must be in (0, 0.5) (got 0.5)"),
     ({"size": 0.13}, "cube size 0.13 m is not a multiple of L0 = 0.02 m"),
 ])
 def test_bad_parameters_are_value_errors_naming_them(kw, message):
