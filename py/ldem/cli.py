@@ -12,6 +12,8 @@ import sys
 
 import numpy as np
 
+from .helptext import HelpFormatter
+
 EXIT_BAD_INPUT = 2
 EXIT_FAILED = 1
 
@@ -174,8 +176,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     c = sub.add_parser("cube", help="one cube tension test (peak stress, curve, crack picture)",
                        description="Pulls a concrete cube in tension until it separates in two pieces; writes curve.csv, "
-                                   "summary.json, curve.png, energies.png, cracks.png and bars.vtu into --out.",
-                       formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                                   "summary.json, curve.png, energies.png, cracks.png and the ParaView series "
+                                   "(bars.pvd, crack.pvd) into --out.",
+                       formatter_class=HelpFormatter)
     add_cube_options(c)
     c.add_argument("--out", default=os.path.join("out", "cube"), metavar="DIR", help="output folder")
     c.add_argument("--no-progress", action="store_true", help="no progress bar")
@@ -191,7 +194,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Builds an N^3 cube (default material), runs S steps of uniform loading R "
                                    "times and prints modules, bars, nodes, steps, threads, ns_per_bar_step "
                                    "(median of the R repetitions), peak_rss_bytes and bytes_per_bar.",
-                       formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                       formatter_class=HelpFormatter)
     b.add_argument("--modules", type=int, default=24, metavar="N", help="modules per side")
     b.add_argument("--steps", type=int, default=200, metavar="S", help="steps per repetition")
     b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
@@ -202,7 +205,7 @@ def build_parser() -> argparse.ArgumentParser:
                        description="Reads DIR/summary.json (its parameters and provenance), runs the same test into "
                                    "--out (default DIR/rerun) and compares the curve and the summary's numbers: exit 0 "
                                    "if they are identical, 1 if not.",
-                       formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                       formatter_class=HelpFormatter)
     r.add_argument("dir", metavar="DIR", help="a folder written by ldem cube (or a study's case folder)")
     r.add_argument("--out", default=None, metavar="OUT", help="where the rerun writes (default: DIR/rerun)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")

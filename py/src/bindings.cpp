@@ -50,21 +50,40 @@ PYBIND11_MODULE(_core, m) {
             return rows;
         },
         "every parameter of a cube test: group, name, unit, help, kind (float/int/choice), default, domain, choices");
+    // A group's struct: Material(E=..., nu=...) with its parameters as keyword
+    // arguments, each an attribute with its help, validate(), and a repr.
     auto groupStruct = [&](auto cls, const std::string& group) {
         using T = typename decltype(cls)::type;
-        cls.def(py::init<>()).def("validate", &T::validate);
+        std::vector<std::string> names;
+        for (const ParamInfo& p : cubeTestParameters())
+            if (p.group == group) names.push_back(p.name);
+        cls.def(py::init([](const py::kwargs& kw) {
+                    T s;
+                    for (const auto& item : kw) setParameter(s, py::cast<std::string>(item.first),
+                                                             py::cast<ParamValue>(item.second));
+                    return s;
+                }),
+                "every parameter of the group as a keyword argument; unset ones at their defaults")
+            .def("validate", &T::validate, "raises ValueError naming the first parameter outside its domain")
+            .def("__repr__", [names, cls](const T& s) {
+                std::string r = py::cast<std::string>(cls.attr("__name__")) + "(";
+                for (std::size_t i = 0; i < names.size(); ++i)
+                    r += (i ? ", " : "") + names[i] + "=" + py::cast<std::string>(py::repr(py::cast(getParameter(s, names[i]))));
+                return r + ")";
+            });
         for (const ParamInfo& p : cubeTestParameters())
             if (p.group == group) {
                 const std::string name = p.name;
                 cls.def_property(
                     name.c_str(), [name](const T& s) { return getParameter(s, name); },
-                    [name](T& s, const ParamValue& v) { setParameter(s, name, v); }, p.help.c_str());
+                    [name](T& s, const ParamValue& v) { setParameter(s, name, v); },
+                    (p.help + (p.unit.empty() ? "" : " [" + p.unit + "]") + "; " + p.domain.describe()).c_str());
             }
     };
-    groupStruct(py::class_<Material>(m, "Material"), "material");
-    groupStruct(py::class_<LoadingParams>(m, "LoadingParams"), "loading");
-    groupStruct(py::class_<RunParams>(m, "RunParams"), "run");
-    py::class_<CubeTestParams>(m, "CubeTestParams", "every parameter of a cube test, by name")
+    groupStruct(py::class_<Material>(m, "Material", "material constants (pkg/ldem/Parameters.hpp)"), "material");
+    groupStruct(py::class_<LoadingParams>(m, "LoadingParams", "the loading of a cube test"), "loading");
+    groupStruct(py::class_<RunParams>(m, "RunParams", "how a run goes: seed, damping, time step, stop rules"), "run");
+    py::class_<CubeTestParams>(m, "CubeTestParams", "every parameter of a cube test, by name: p['nu'] = 0.2")
         .def(py::init<>())
         .def("__getitem__", [](const CubeTestParams& p, const std::string& k) { return getParameter(p, k); })
         .def("__setitem__", [](CubeTestParams& p, const std::string& k, const ParamValue& v) { setParameter(p, k, v); })
@@ -74,7 +93,12 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("loading", &CubeTestParams::loading)
         .def_readonly("run", &CubeTestParams::run);
 
-    py::class_<CurvePoint>(m, "CurvePoint")
+    py::class_<CurvePoint>(m, "CurvePoint", "one record of a run: state n (stresses in Pa, energies in J)")
+        .def("__repr__", [](const CurvePoint& p) {
+            return "CurvePoint(step=" + std::to_string(p.step) + ", mean_strain=" + formatNumber(p.meanStrain) +
+                   ", stress=" + formatNumber(p.stress) + " Pa, fracture=" + formatNumber(p.fracture) +
+                   " J, broken=" + std::to_string(p.broken) + ")";
+        })
         .def_readonly("step", &CurvePoint::step)
         .def_readonly("time", &CurvePoint::time)
         .def_readonly("mean_strain", &CurvePoint::meanStrain)
@@ -94,7 +118,12 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("mean_strain", &RunEvent::meanStrain)
         .def_readonly("fracture", &RunEvent::fracture)
         .def_property_readonly("reached", &RunEvent::reached);
-    py::class_<RunSummary>(m, "RunSummary")
+    py::class_<RunSummary>(m, "RunSummary", "what Simulation.run returns: the peak, the two events, the energy check")
+        .def("__repr__", [](const RunSummary& s) {
+            return "RunSummary(peak_stress=" + formatNumber(s.peakStress) + " Pa, strain_at_peak=" +
+                   formatNumber(s.strainAtPeak) + ", stop_reason='" + s.stopReason + "', steps=" +
+                   std::to_string(s.steps) + ")";
+        })
         .def_readonly("peak_stress", &RunSummary::peakStress)
         .def_readonly("strain_at_peak", &RunSummary::strainAtPeak)
         .def_readonly("edge_strain_at_peak", &RunSummary::edgeStrainAtPeak)
@@ -120,7 +149,12 @@ PYBIND11_MODULE(_core, m) {
     m.attr("DAMAGED") = int(DamageState::Damaged);
     m.attr("BROKEN") = int(DamageState::Broken);
 
-    py::class_<Lattice>(m, "Lattice")
+    py::class_<Lattice>(m, "Lattice", "the cubic lattice with centre nodes: nodes, bars in rows, masses")
+        .def("__repr__", [](const Lattice& l) {
+            return "Lattice(" + std::to_string(l.nx) + " x " + std::to_string(l.ny) + " x " + std::to_string(l.nz) +
+                   " modules of L0 = " + formatNumber(l.L0) + " m, " + std::to_string(l.numNodes()) + " nodes, " +
+                   std::to_string(l.numBars()) + " bars)";
+        })
         .def_readonly("nx", &Lattice::nx)
         .def_readonly("ny", &Lattice::ny)
         .def_readonly("nz", &Lattice::nz)
@@ -163,7 +197,15 @@ PYBIND11_MODULE(_core, m) {
     });
     m.def("max_threads", &maxThreads);
 
-    py::class_<Simulation>(m, "Simulation")
+    py::class_<Simulation>(m, "Simulation",
+                           "a specimen and its run: Simulation(CubeTestParams) for a cube test, or "
+                           "Simulation(nx, ny, nz, L0, material, loading, run); run(observer) is the time-step loop")
+        .def("__repr__", [](const Simulation& s) {
+            const Lattice& l = s.lattice();
+            return "Simulation(" + std::to_string(l.nx) + " x " + std::to_string(l.ny) + " x " + std::to_string(l.nz) +
+                   " modules, " + std::to_string(l.numBars()) + " bars, dt = " + formatNumber(s.dt()) + " s, step " +
+                   std::to_string(s.stepCount()) + ")";
+        })
         .def(py::init([](int nx, int ny, int nz, double L0, const Material& mat, const LoadingParams& load,
                          const RunParams& run) {
                  py::gil_scoped_release release;  // the modal analysis can take seconds

@@ -190,3 +190,34 @@ def test_bench_too_big_for_the_machine_is_one_line(cli):
     r = cli("bench", "--modules", "400", "--steps", "1", "--repeats", "1")
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "this machine has" in r.stderr, r.stderr
 
+
+
+@pytest.mark.parametrize("command", [["cube"], ["study", "size-effect"], ["study", "damping"], ["bench"], ["rerun"]])
+def test_help_gives_each_default_once_and_only_a_real_one(cli, command):
+    r = cli(*command, "--help")
+    assert r.returncode == 0
+    text = " ".join(r.stdout.split())
+    for empty in ("(default: None)", "(default: False)", "(default: )", "(default: [])"):
+        assert empty not in text, (command, empty)
+    for option in ("--zeta", "--seed", "--strain-rate") if command == ["cube"] else ():
+        help_of = text.split(f" {option} ")[1].split(" --")[0]
+        assert help_of.count("(default:") == 1, (option, help_of)
+
+
+def test_core_api_has_docstrings_keywords_and_reprs():
+    """The C++ classes from Python: documented, built with keyword arguments, printable."""
+    from ldem import _core
+
+    m = _core.Material(E=3e10, nu=0.2, Gf_draw="module")
+    assert (m.E, m.nu, m.Gf_draw, m.rho) == (3e10, 0.2, "module", 2400.0)
+    assert repr(m).startswith("Material(E=30000000000.0, nu=0.2, rho=2400.0,") and "Gf_draw='module'" in repr(m)
+    assert repr(_core.RunParams(seed=3)).startswith("RunParams(seed=3, zeta=0.02,")
+    with pytest.raises(ValueError, match="unknown parameter 'Young'"):
+        _core.Material(Young=1.0)
+    assert "Poisson's ratio; in (0, 0.5)" in _core.Material.nu.__doc__
+    sim = _core.Simulation(_core.CubeTestParams())
+    assert repr(sim) == f"Simulation(6 x 6 x 6 modules, 3150 bars, dt = {sim.dt:g} s, step 0)"
+    assert repr(sim.lattice) == "Lattice(6 x 6 x 6 modules of L0 = 0.02 m, 559 nodes, 3150 bars)"
+    for cls in (_core.Simulation, _core.Lattice, _core.CurvePoint, _core.RunSummary, _core.Material,
+                _core.LoadingParams, _core.RunParams, _core.CubeTestParams):
+        assert cls.__doc__ and len(cls.__doc__) > 20, cls

@@ -7,6 +7,7 @@ import dataclasses
 import time
 from typing import List, Sequence
 
+from ..helptext import HelpFormatter
 from ..cube import CubeTest
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
@@ -130,14 +131,14 @@ def add_parser(sub) -> None:
                        help="format of the figures (pdf and svg: vector, for papers)")
 
     s = kinds.add_parser("size-effect", help="sizes x seeds x loads: tables, curves, cracks, energies, fractal fit",
-                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                         formatter_class=HelpFormatter)
     common(s)
     s.add_argument("--sizes", default=",".join(f"{b:g}" for b in STUDY_SIZES), help="cube sides [m]")
     s.add_argument("--seeds", type=int, default=6, help="random specimens per size and load (seeds 1..N)")
     s.set_defaults(func=cmd_size_effect)
 
     d = kinds.add_parser("damping", help="one cube at several damping ratios (default: 0.96 m, 2 %% and 200 %%)",
-                         formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+                         formatter_class=HelpFormatter)
     common(d)
     d.add_argument("--size", type=float, default=0.96, help="cube side [m]")
     d.add_argument("--seed", type=int, default=1, help="the random specimen")
