@@ -434,3 +434,14 @@ def test_paraview_series(cli, tmp_path):
     end_crack = meshio.read(out / "crack.vtu")
     assert np.all(end_crack.cell_data["damage_state"][0] == 2)
     assert len(end_crack.cells[0].data) == (last.cell_data["damage_state"][0] == 2).sum() > 0
+
+
+def test_readme_yade_batch_command_creates_its_log_folder():
+    """yade-batch (YADE 2023.02) hangs when the folder of --log is missing: the
+    README's command creates it first."""
+    with open(os.path.join(ROOT, "README.md")) as f:
+        lines = [ln for ln in f if "yade-double-batch" in ln and "--log" in ln and not ln.startswith("(")]
+    assert lines, "README shows no yade-batch command with --log"
+    for line in lines:
+        log = re.search(r"--log '([^']+)'", line).group(1)
+        assert line.startswith(f"mkdir -p {os.path.dirname(log)} && yade-double-batch"), line
