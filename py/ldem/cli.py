@@ -247,3 +247,9 @@ def main(argv=None) -> int:
         how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
         print(f"ldem {args.command}: {how} (rows so far are kept in the output folder)", file=sys.stderr)
         return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)
+
+
+def console() -> None:
+    """The `ldem` command of a pip installation (py/bin/ldem for the others)."""
+    sys.exit(main())
+
