@@ -10,10 +10,13 @@ def _enabled(enabled) -> bool:
 
 
 class ProgressBar:
-    """A tqdm bar over the mean strain, with stress and peak: an observer of CubeTest.run."""
+    """A tqdm bar over the mean strain, with stress, peak and the energy
+    balance so far (flagged once above the run's tolerance): an observer of
+    CubeTest.run."""
 
-    def __init__(self, final_strain: float, enabled=None):
+    def __init__(self, final_strain: float, enabled=None, energy_tolerance: float = 0.01):
         self._bar, self._peak, self._final = None, 0.0, final_strain
+        self._tol, self._work, self._residual = energy_tolerance, 0.0, 0.0
         if _enabled(enabled):
             from tqdm import tqdm
             self._bar = tqdm(total=1000, unit="‰", desc="strain", file=sys.stderr,
@@ -25,7 +28,21 @@ class ProgressBar:
         self._peak = max(self._peak, row["stress_MPa"])
         self._bar.n = min(1000, int(1000 * row["mean_strain"] / self._final))
         self._bar.set_postfix_str(f"eps={row['mean_strain']:.3e} sigma={row['stress_MPa']:.3f} MPa "
-                                  f"peak={self._peak:.3f} MPa broken={row['broken_bars']}", refresh=True)
+                                  f"peak={self._peak:.3f} MPa broken={row['broken_bars']} "
+                                  f"balance={self.balance(row):.1e}"
+                                  + (" ENERGY ERROR" if self.error() > self._tol else ""), refresh=True)
+
+    def balance(self, row: dict) -> float:
+        """The energy balance error so far, as the summary computes it: the
+        largest |W - K - E - F - D| over the rows, over the largest W."""
+        self._work = max(self._work, row["external_work_J"])
+        residual = row["external_work_J"] - (row["kinetic_J"] + row["elastic_J"] + row["fracture_J"]
+                                             + row["damping_J"])
+        self._residual = max(self._residual, abs(residual))
+        return self.error()
+
+    def error(self) -> float:
+        return self._residual / self._work if self._work > 0 else 0.0
 
     def close(self) -> None:
         if self._bar is not None:

@@ -28,7 +28,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     if out is not None:
         io.prepare_dir(out)
     sim = simulation if simulation is not None else test.simulation()
-    bar = ProgressBar(test.final_strain, enabled=progress)
+    bar = ProgressBar(test.final_strain, enabled=progress, energy_tolerance=test.energy_tolerance)
     csv = io.CurveCsv(os.path.join(out, "curve.csv")) if out is not None else None
     series = io.Snapshots(sim, out, snapshots) if out is not None and plots else None
     observers = [o for o in (csv, bar, series) if o is not None]

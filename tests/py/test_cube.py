@@ -205,3 +205,16 @@ def test_a_specimen_that_has_run_is_refused():
     test.run(simulation=sim)
     with pytest.raises(ValueError, match=r"this specimen has already run \(\d+ steps\)"):
         test.run(simulation=sim)
+
+
+def test_progress_line_shows_the_summary_energy_balance():
+    """The progress bar's balance is the summary's energy_balance_error, row by
+    row (the same residual, max |W - K - E - F - D| over max W)."""
+    from ldem.progress import ProgressBar
+
+    r = ldem.CubeTest(**FAST, zeta=0.0).run()
+    bar = ProgressBar(1.0, enabled=False)
+    rows = [{c: r.curve[c][i] for c in ldem.CURVE_COLUMNS} for i in range(len(r.curve["step"]))]
+    for row in rows:
+        bar.balance(row)
+    assert bar.error() == r.summary["energy_balance_error"] > 0
