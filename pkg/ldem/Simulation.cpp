@@ -178,12 +178,38 @@ void Simulation::finishStep() {
     ++step_;
 }
 
+Checkpoint Simulation::checkpoint() const {
+    if (!progress_.pendingAdvance)
+        throw std::logic_error("a checkpoint is taken at a record, from run()'s observer");
+    return {u_, v_, f_, bars_.kappa, bars_.epsR, bars_.softening, time_, externalWork_, dampingWork_,
+            drive_.speedupStart, step_, progress_};
+}
+
+void Simulation::restore(const Checkpoint& c) {
+    const std::size_t n = std::size_t(lat_.numNodes()), b = std::size_t(lat_.numBars());
+    if (c.u.x.size() != n || c.v.x.size() != n || c.f.x.size() != n || c.kappa.size() != b || c.epsR.size() != b ||
+        c.softening.size() != lat_.barRows.size())
+        throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+    u_ = c.u, v_ = c.v, f_ = c.f;
+    bars_.kappa = c.kappa, bars_.epsR = c.epsR, bars_.softening = c.softening;
+    time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
+    drive_.speedupStart = c.speedupStart, step_ = c.step;
+    progress_ = c.progress;
+    progress_.pendingAdvance = true;
+}
+
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
     setThreads(run_.threads);
-    RunSummary s;
-    double maxWork = 0, maxResidual = 0;
-    LoadLossDetector loadLoss(splitWindow_, run_.stopFraction);
-    std::int64_t lastCheck = -kSeparationCheckSteps;
+    RunProgress& g = progress_;
+    if (!g.started) {
+        g = RunProgress{};
+        g.loadLoss = LoadLossDetector(splitWindow_, run_.stopFraction);
+        g.lastCheck = -kSeparationCheckSteps;
+        g.started = true;
+    } else if (!g.pendingAdvance) {
+        throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
+    }
+    RunSummary& s = g.summary;
     // The peak, at every step: the stress of state n is known once its forces are.
     auto trackPeak = [&](double tn) {
         const double stress = supportStress();
@@ -192,6 +218,10 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         s.strainAtPeak = meanStrainAt(tn);
         s.edgeStrainAtPeak = drive_.displacement(tn) / meas_.gaugeLength;
     };
+    if (g.pendingAdvance) {  // restored at a record: the rest of that step
+        g.pendingAdvance = false;
+        advance();
+    }
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
@@ -206,26 +236,29 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         // Energy from nothing (kinetic above all the work put in) or NaN: the
         // integration is unstable; stop before it writes garbage.
         if (!std::isfinite(total) || !std::isfinite(p.stress) ||
-            p.kinetic > 1.5 * p.externalWork + 1e-9 * (1 + maxWork)) {
+            p.kinetic > 1.5 * p.externalWork + 1e-9 * (1 + g.maxWork)) {
             std::ostringstream msg;
             msg << "numerical instability at step " << step_ << " (t = " << time_ << " s): kinetic energy "
                 << p.kinetic << " J against external work " << p.externalWork << " J; dt = " << dt_
                 << " s, stability limit " << stableTimeStep(freq_.omegaMax) << " s";
             throw InstabilityError(msg.str());
         }
-        maxWork = std::max(maxWork, p.externalWork);
-        maxResidual = std::max(maxResidual, std::abs(p.balanceResidual()));
+        g.maxWork = std::max(g.maxWork, p.externalWork);
+        g.maxResidual = std::max(g.maxResidual, std::abs(p.balanceResidual()));
         s.fractureEnergy = p.fracture;
         s.steps = step_;
-        const bool keepGoing = !observer || observer(p);
-        if (!s.loadLoss.reached() && loadLoss.update(p.time, p.stress, s.peakStress, p.broken)) {
+        if (!s.loadLoss.reached() && g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken)) {
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
             drive_.speedupStart = time_;
         }
-        if (p.broken > 0 && p.stress < 0.5 * s.peakStress && step_ - lastCheck >= kSeparationCheckSteps) {
-            lastCheck = step_;
+        if (p.broken > 0 && p.stress < 0.5 * s.peakStress && step_ - g.lastCheck >= kSeparationCheckSteps) {
+            g.lastCheck = step_;
             if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
         }
+        // The record is complete: what the observer sees (and may checkpoint) is state n with its events.
+        g.pendingAdvance = true;
+        const bool keepGoing = !observer || observer(p);
+        g.pendingAdvance = false;
         if (s.separation.reached()) s.stopReason = "separated";
         else if (run_.stopAt == StopAt::LoadLoss && s.loadLoss.reached()) s.stopReason = "load_lost";
         else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
@@ -233,7 +266,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         if (!s.stopReason.empty()) break;
         advance();
     }
-    s.energyBalanceError = maxWork > 0 ? maxResidual / maxWork : 0.0;
+    s.energyBalanceError = g.maxWork > 0 ? g.maxResidual / g.maxWork : 0.0;
     s.energyError = s.energyBalanceError > run_.energyTolerance;
     return s;
 }

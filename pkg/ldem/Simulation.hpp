@@ -65,12 +65,37 @@ struct RunSummary {
 // fundamental periods by default) must be below fraction x peak.
 class LoadLossDetector {
 public:
-    LoadLossDetector(double window, double fraction) : window_(window), fraction_(fraction) {}
+    LoadLossDetector(double window = 0, double fraction = 0) : window_(window), fraction_(fraction) {}
     bool update(double time, double stress, double peakStress, std::int64_t broken);
+    // Its records, for a checkpoint, and back.
+    std::vector<std::pair<double, double>> records() const { return {recent_.begin(), recent_.end()}; }
+    void setRecords(const std::vector<std::pair<double, double>>& r) { recent_.assign(r.begin(), r.end()); }
 
 private:
     double window_, fraction_;
     std::deque<std::pair<double, double>> recent_;  // (time, stress) of the records in the window
+};
+
+// What run() has found so far, kept in the Simulation so that a run can stop at
+// a record (a checkpoint) and continue bit-identically (restore()).
+struct RunProgress {
+    RunSummary summary;
+    double maxWork = 0, maxResidual = 0;
+    LoadLossDetector loadLoss;
+    std::int64_t lastCheck = 0;        // step of the last separation test
+    bool started = false;
+    bool pendingAdvance = false;       // state n is recorded: the run goes on with its advance()
+};
+
+// The whole state of a run at a record: with the specimen's parameters, enough
+// to continue it (ldem.io.write_checkpoint stores it).
+struct Checkpoint {
+    Field3 u, v, f;
+    std::vector<double> kappa, epsR;
+    std::vector<std::uint8_t> softening;
+    double time = 0, externalWork = 0, dampingWork = 0, speedupStart = 0;
+    std::int64_t step = 0;
+    RunProgress progress;
 };
 
 // Thrown when the integration blows up (NaN, or energy created from nothing).
@@ -107,6 +132,13 @@ public:
     void computeForces();
     CurvePoint measure() const;
     void advance();
+
+    // The state at the record being observed (call it from run()'s observer),
+    // and a specimen set back to such a state: its next run() continues the
+    // interrupted one step for step, bit for bit.
+    Checkpoint checkpoint() const;
+    void restore(const Checkpoint& c);
+    bool resumable() const { return progress_.pendingAdvance; }
 
     // Sets dt without the stability check: for tests of the instability
     // detector and for studies of the stability limit itself.
@@ -170,6 +202,7 @@ private:
     double externalWork_ = 0, dampingWork_ = 0;
     std::int64_t step_ = 0, clamped_ = 0;
     int recordEvery_ = 1;
+    RunProgress progress_;
 };
 
 }  // namespace ldem

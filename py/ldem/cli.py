@@ -56,6 +56,16 @@ def cube_from_args(args) -> "CubeTest":
 
 
 def cmd_cube(args) -> int:
+    if args.restart:  # the test of the checkpoint, in its folder
+        from .io import read_checkpoint
+
+        try:
+            _, parameters = read_checkpoint(os.path.join(args.restart, "checkpoint.npz"))
+        except OSError as e:
+            raise ValueError(f"cannot restart from {args.restart}: {e.strerror or e}") from None
+        args.out = args.restart
+        for name, value in parameters.items():
+            setattr(args, name, value)
     test = cube_from_args(args)
     test.params()  # every input checked before the warnings below and before any output
     cores = os.cpu_count() or 1
@@ -70,7 +80,8 @@ def cmd_cube(args) -> int:
     except ValueError:
         raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
     result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots,
-                      figure_format=args.figure_format, snapshots=snapshots)
+                      figure_format=args.figure_format, snapshots=snapshots,
+                      checkpoint_every=args.checkpoint_every, restart=bool(args.restart))
     s = result.summary
     print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
           + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if test.load == "triangular" else ""))
@@ -185,6 +196,11 @@ def build_parser() -> argparse.ArgumentParser:
     c.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
     c.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
                    help="format of the pictures (pdf and svg: vector, for papers)")
+    c.add_argument("--checkpoint-every", type=int, default=0, metavar="ROWS",
+                   help="write checkpoint.npz (the whole state) every ROWS curve rows; 0: never")
+    c.add_argument("--restart", default=None, metavar="DIR",
+                   help="continue the run of DIR/checkpoint.npz in DIR, with its parameters, bit for bit as if it "
+                        "had never stopped (other parameters are ignored)")
     c.add_argument("--snapshots", default="", metavar="STRAINS",
                    help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
                         "(comma-separated; the end state is always written)")

@@ -55,23 +55,25 @@ class _CubeTestMethods:
         return dataclasses.asdict(self)
 
     # -- running ------------------------------------------------------------
-    def run(self, observers=(), simulation=None) -> "CubeResult":
+    def run(self, observers=(), simulation=None, previous_rows=()) -> "CubeResult":
         """Runs the test to separation (or load loss, see stop_at; or the final
         strain) and returns what it computed; writes nothing.
 
         observers: callables given each curve row (a dict over CURVE_COLUMNS)
         as it is recorded, e.g. ldem.io.CurveCsv or ldem.progress.ProgressBar.
-        simulation: a specimen from self.simulation(), if you built it already.
+        simulation: a specimen from self.simulation(), if you built it already,
+        or one restored from a checkpoint (its run continues; previous_rows are
+        the curve rows recorded before the checkpoint).
         If the run fails or is interrupted, the exception carries what was
         computed up to then as its `ldem_result` (status failed/interrupted).
         ldem.run_cube(test, out=...) runs it with the files and pictures.
         """
         t0 = time.perf_counter()
         sim = simulation if simulation is not None else self.simulation()
-        if sim.steps > 0:  # its state is the end of that run: a second run would start from there
+        if sim.steps > 0 and not sim.resumable:  # the end of that run: a second run would start from there
             raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
                              "test.simulation()")
-        rows = []
+        rows = list(previous_rows)
 
         def observe(p):
             row = curve_row(p)

@@ -59,10 +59,11 @@ class CurveCsv:
     fails or is interrupted keeps every row up to that point. An observer of
     CubeTest.run."""
 
-    def __init__(self, path: str):
+    def __init__(self, path: str, append: bool = False):
         self.path = path
-        self._f = open(path, "w")
-        self._write(",".join(CURVE_COLUMNS) + "\n")
+        self._f = open(path, "a" if append else "w")
+        if not append:
+            self._write(",".join(CURVE_COLUMNS) + "\n")
 
     def __call__(self, row: dict) -> None:
         self._write(",".join(_cell(row[c]) for c in CURVE_COLUMNS) + "\n")
@@ -195,3 +196,45 @@ def read_table(path: str) -> List[dict]:
                 return v
     with open(path, newline="") as f:
         return [{k: conv(v) for k, v in r.items()} for r in csv.DictReader(f)]
+
+
+# -- checkpoints -----------------------------------------------------------------
+def write_checkpoint(path: str, state: dict, parameters: dict) -> None:
+    """checkpoint.npz: the arrays of Simulation.checkpoint() (nodes: u_*, v_*,
+    f_* by component; bars: kappa, eps_r; rows: softening; the run's scalars,
+    counters, events and load-loss window) and the test's parameters as JSON.
+    npz, not HDF5: numpy reads it with nothing else installed, and it holds
+    named arrays, which is all a checkpoint is."""
+    with atomic(path) as tmp:
+        np.savez(tmp, parameters=np.array(json.dumps(parameters)), **state)
+
+
+def read_checkpoint(path: str) -> tuple:
+    """(state for Simulation.restore, parameters)."""
+    with np.load(path) as z:
+        state = {k: z[k] for k in z.files if k != "parameters"}
+        return state, json.loads(str(z["parameters"]))
+
+
+def cut_curve_after(path: str, step: int) -> List[dict]:
+    """Drops curve.csv's rows after `step` (a restart writes them again) and
+    returns the rows kept, as numbers."""
+    with open(path) as f:
+        lines = f.readlines()
+    keep = [lines[0]] + [ln for ln in lines[1:] if ln.endswith("\n") and int(ln.split(",", 1)[0]) <= step]
+    with atomic(path) as tmp, open(tmp, "w") as f:
+        f.writelines(keep)
+    return [dict(zip(CURVE_COLUMNS, (float(x) for x in ln.split(",")))) for ln in keep[1:]]
+
+
+class Checkpoints:
+    """An observer of CubeTest.run: checkpoint.npz every `every` curve rows."""
+
+    def __init__(self, sim, path: str, every: int, parameters: dict):
+        self.sim, self.path, self.every, self.parameters, self.rows = sim, path, every, parameters, 0
+
+    def __call__(self, row: dict) -> None:
+        self.rows += 1
+        if self.rows % self.every == 0:
+            write_checkpoint(self.path, self.sim.checkpoint(), self.parameters)
+

@@ -16,24 +16,40 @@ from .progress import ProgressBar
 
 
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
-             simulation=None, figure_format: str = "png", snapshots: Sequence[float] = ()) -> CubeResult:
+             simulation=None, figure_format: str = "png", snapshots: Sequence[float] = (),
+             checkpoint_every: int = 0, restart: bool = False, observers: Sequence = ()) -> CubeResult:
     """Runs test; with out, writes curve.csv (row by row), summary.json (also
     when the run fails or is interrupted: status says so) and, with plots,
     curve, energies and cracks pictures (figure_format: png, pdf or svg) and
     the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu at each mean strain of
     `snapshots`, bars.vtu and crack.vtu at the end, bars.pvd and crack.pvd.
-    progress: a bar on stderr (default: when stderr is a terminal)."""
+    progress: a bar on stderr (default: when stderr is a terminal).
+    checkpoint_every: write out/checkpoint.npz every so many curve rows.
+    observers: more callables given each curve row, after the writers.
+    restart: continue the run of out/checkpoint.npz (same parameters), bit for
+    bit as if it had never stopped; curve.csv keeps its rows up to the
+    checkpoint and gets the rest."""
     if any(not (s > 0) for s in snapshots):
         raise ValueError(f"snapshot strains must be positive (got {list(snapshots)})")
+    if checkpoint_every < 0:
+        raise ValueError(f"checkpoint interval must be >= 0 rows (got {checkpoint_every})")
+    if (restart or checkpoint_every) and out is None:
+        raise ValueError("checkpoints need an output folder")
     if out is not None:
         io.prepare_dir(out)
     sim = simulation if simulation is not None else test.simulation()
+    previous = []
+    if restart:
+        previous = _restore(test, sim, out)
     bar = ProgressBar(test.final_strain, enabled=progress, energy_tolerance=test.energy_tolerance)
-    csv = io.CurveCsv(os.path.join(out, "curve.csv")) if out is not None else None
-    series = io.Snapshots(sim, out, snapshots) if out is not None and plots else None
-    observers = [o for o in (csv, bar, series) if o is not None]
+    csv = io.CurveCsv(os.path.join(out, "curve.csv"), append=restart) if out is not None else None
+    series = io.Snapshots(sim, out, [s for s in snapshots if not previous or s > previous[-1]["mean_strain"]]) \
+        if out is not None and plots else None
+    saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters()) \
+        if checkpoint_every else None
+    everyone = [o for o in (csv, bar, series, saver) if o is not None] + list(observers)
     try:
-        result = test.run(observers, simulation=sim)
+        result = test.run(everyone, simulation=sim, previous_rows=previous)
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
         if out is not None and partial is not None:
@@ -55,6 +71,20 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
             raise
         io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
     return result
+
+
+def _restore(test: CubeTest, sim, out: str) -> list:
+    """sim set back to out/checkpoint.npz, curve.csv cut to its rows; returns them."""
+    path = os.path.join(out, "checkpoint.npz")
+    try:
+        state, parameters = io.read_checkpoint(path)
+    except OSError as e:
+        raise ValueError(f"cannot restart: {path}: {e.strerror or e}") from None
+    mine = {k: v for k, v in test.parameters().items() if k != "threads"}
+    if {k: v for k, v in parameters.items() if k != "threads"} != mine:
+        raise ValueError(f"cannot restart: {path} is of other parameters")
+    sim.restore(state)
+    return io.cut_curve_after(os.path.join(out, "curve.csv"), int(state["counters"][0]))
 
 
 def _summary_after_failure(summary: dict, out: str) -> None:

@@ -27,6 +27,69 @@ py::array_t<T> toNumpy(const std::vector<T>& v) {
     return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
+template <class T>
+std::vector<T> fromNumpy(const py::handle& a) {
+    return py::cast<std::vector<T>>(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a).attr("tolist")());
+}
+
+py::array_t<double> eventArray(const RunEvent& e) {
+    return toNumpy(std::vector<double>{double(e.step), e.time, e.meanStrain, e.fracture});
+}
+
+RunEvent eventOf(const py::handle& a) {
+    const auto v = fromNumpy<double>(a);
+    return {std::int64_t(v.at(0)), v.at(1), v.at(2), v.at(3)};
+}
+
+// A checkpoint as named numpy arrays (the keys of checkpoint.npz, README).
+py::dict checkpointDict(const Checkpoint& c) {
+    py::dict d;
+    for (auto [name, f] : {std::pair<const char*, const Field3*>{"u", &c.u}, {"v", &c.v}, {"f", &c.f}}) {
+        d[(std::string(name) + "_x").c_str()] = toNumpy(f->x);
+        d[(std::string(name) + "_y").c_str()] = toNumpy(f->y);
+        d[(std::string(name) + "_z").c_str()] = toNumpy(f->z);
+    }
+    d["kappa"] = toNumpy(c.kappa), d["eps_r"] = toNumpy(c.epsR), d["softening"] = toNumpy(c.softening);
+    const RunProgress& g = c.progress;
+    const RunSummary& s = g.summary;
+    d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxWork,
+                                               g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
+                                               s.fractureEnergy});
+    d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
+    d["load_loss"] = eventArray(s.loadLoss), d["separation"] = eventArray(s.separation);
+    std::vector<double> window;
+    for (const auto& [t, stress] : g.loadLoss.records()) window.push_back(t), window.push_back(stress);
+    d["load_loss_window"] = toNumpy(window);
+    return d;
+}
+
+Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
+    Checkpoint c;
+    for (auto [name, f] : {std::pair<const char*, Field3*>{"u", &c.u}, {"v", &c.v}, {"f", &c.f}}) {
+        f->x = fromNumpy<double>(d[(std::string(name) + "_x").c_str()]);
+        f->y = fromNumpy<double>(d[(std::string(name) + "_y").c_str()]);
+        f->z = fromNumpy<double>(d[(std::string(name) + "_z").c_str()]);
+    }
+    c.kappa = fromNumpy<double>(d["kappa"]), c.epsR = fromNumpy<double>(d["eps_r"]);
+    c.softening = fromNumpy<std::uint8_t>(d["softening"]);
+    const auto sc = fromNumpy<double>(d["scalars"]);
+    const auto ct = fromNumpy<std::int64_t>(d["counters"]);
+    RunProgress& g = c.progress;
+    RunSummary& s = g.summary;
+    c.time = sc.at(0), c.externalWork = sc.at(1), c.dampingWork = sc.at(2), c.speedupStart = sc.at(3);
+    g.maxWork = sc.at(4), g.maxResidual = sc.at(5);
+    s.peakStress = sc.at(6), s.strainAtPeak = sc.at(7), s.edgeStrainAtPeak = sc.at(8), s.fractureEnergy = sc.at(9);
+    c.step = ct.at(0), g.lastCheck = ct.at(1), s.steps = ct.at(2);
+    s.loadLoss = eventOf(d["load_loss"]), s.separation = eventOf(d["separation"]);
+    const auto w = fromNumpy<double>(d["load_loss_window"]);
+    std::vector<std::pair<double, double>> records;
+    for (std::size_t i = 0; i + 1 < w.size(); i += 2) records.emplace_back(w[i], w[i + 1]);
+    g.loadLoss = LoadLossDetector(sim.splitWindow(), sim.runParams().stopFraction);
+    g.loadLoss.setRecords(records);
+    g.started = true;
+    return c;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -259,6 +322,12 @@ PYBIND11_MODULE(_core, m) {
                  d["node"] = toNumpy(c.node), d["dim"] = toNumpy(c.dim), d["weight"] = toNumpy(c.weight);
                  return d;
              })
+        .def("checkpoint", [](const Simulation& s) { return checkpointDict(s.checkpoint()); },
+             "the state at the record being observed, as named arrays (call it from run()'s observer)")
+        .def("restore", [](Simulation& s, const py::dict& d) { s.restore(checkpointOf(s, d)); }, py::arg("state"),
+             "set back to a checkpoint: the next run() continues that run bit for bit")
+        .def_property_readonly("resumable", &Simulation::resumable,
+                               "restored (or stopped within its observer): run() continues it")
         .def_property_readonly("clamped_bars", &Simulation::clampedBars)
         .def_property_readonly("steps", &Simulation::stepCount)
         .def_property_readonly("record_every", &Simulation::recordEvery)
