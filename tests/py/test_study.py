@@ -210,3 +210,21 @@ def test_two_studies_never_share_a_folder(tmp_path):
     assert study.run_cases(tests, out, log=said.append)[0]["status"] == "done"
     assert any("left its lock: taking it over" in s for s in said) and not os.path.exists(lock)
 
+
+
+def test_a_relative_study_folder_on_dask_workers_elsewhere(tmp_path, monkeypatch):
+    """--scheduler with a relative --out: the workers (started in another
+    folder) write where the client means, because case folders are made
+    absolute before they are sent."""
+    import distributed
+
+    start, here = tmp_path / "workers_start_here", tmp_path / "client"
+    start.mkdir(), here.mkdir()
+    monkeypatch.chdir(start)
+    with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=True, dashboard_address=None) as c:
+        monkeypatch.chdir(here)  # the client moves; the worker stays in `start`
+        tests = study.damping_tests(0.04, [0.02], ["uniform"], **TINY)
+        summaries = study.run_cases(tests, "rel", scheduler=c.scheduler_address, log=lambda s: None)
+    assert summaries[0]["status"] == "done"
+    assert (here / "rel" / "cases" / study.case_name(tests[0]) / "summary.json").is_file()
+    assert not (start / "rel").exists()
