@@ -228,3 +228,20 @@ def test_a_relative_study_folder_on_dask_workers_elsewhere(tmp_path, monkeypatch
     assert summaries[0]["status"] == "done"
     assert (here / "rel" / "cases" / study.case_name(tests[0]) / "summary.json").is_file()
     assert not (start / "rel").exists()
+
+
+def test_threads_per_case_are_the_studys():
+    """Threads per case come from the study's options, never from the client's
+    cores when the cases run on a dask cluster."""
+    import argparse
+    import os
+
+    from ldem.study.command import _common
+
+    def args(**kw):
+        base = dict(threads=0, scheduler=None, jobs=1, strain_rate=0.02, set=[])
+        return argparse.Namespace(**{**base, **kw})
+
+    assert _common(args(scheduler="tcp://elsewhere:8786"))["threads"] == 1
+    assert _common(args(scheduler="tcp://elsewhere:8786", threads=4))["threads"] == 4
+    assert _common(args(jobs=2))["threads"] == max(1, (os.cpu_count() or 1) // 2)

@@ -52,7 +52,14 @@ def _settings(pairs: Sequence[str]) -> dict:
 
 
 def _common(args) -> dict:
-    threads = args.threads if args.threads > 0 else default_threads(1 if args.scheduler else args.jobs)
+    """The settings every case of the study gets. Threads per case: --threads;
+    0 means this machine's cores over --jobs, or, on a dask cluster, one thread
+    per case (dask runs cases side by side on the workers, whose cores are not
+    this machine's)."""
+    if args.threads > 0:
+        threads = args.threads
+    else:
+        threads = 1 if args.scheduler else default_threads(args.jobs)
     return {"threads": threads, "strain_rate": args.strain_rate, **_settings(args.set)}
 
 
@@ -117,7 +124,7 @@ def add_parser(sub) -> None:
         q.add_argument("--loads", default="uniform,triangular", help="comma-separated loads")
         q.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once in separate processes")
         q.add_argument("--threads", type=int, default=0, metavar="T",
-                       help="OpenMP threads per case (0: cores / jobs)")
+                       help="OpenMP threads per case (0: this machine's cores / jobs; with --scheduler, 1)")
         q.add_argument("--scheduler", default=None, metavar="ADDRESS",
                        help="send cases to this dask.distributed scheduler instead (e.g. tcp://host:8786)")
         q.add_argument("--strain-rate", dest="strain_rate", type=float, default=CubeTest().strain_rate,
