@@ -2,6 +2,8 @@
 # Installs what ldem needs from Debian (only what is missing), builds it in
 # ./build and installs the `ldem` command and the `ldem` Python package for
 # Debian's /usr/bin/python3 (and so for yade-double) under /usr/local.
+#   bash install.sh --deps-only   only the missing Debian packages (tests/run_all.sh
+#                                 uses it on a machine that has never been set up)
 set -euo pipefail
 cd "$(dirname "$0")"
 
@@ -14,6 +16,7 @@ if [ -n "$missing" ]; then
   $SUDO apt-get update -q
   $SUDO env DEBIAN_FRONTEND=noninteractive apt-get install -y -q $missing
 fi
+[ "${1:-}" = "--deps-only" ] && exit 0
 
 cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 > build.log 2>&1 ||
   { cat build.log; exit 1; }
