@@ -117,7 +117,7 @@ std::array<std::vector<double>, 3> nodePositions(const Lattice& lat);
 std::int64_t expectedNodeCount(int nx, int ny, int nz);
 std::int64_t expectedBarCount(int nx, int ny, int nz);
 // Memory a run of such a lattice takes: ldem-bench's peak resident size per bar
-// is 63 B at 24^3 and 48^3 (lattice, state, Lanczos); with a margin.
+// is 63 B at 24^3 and 38 B at 48^3 (lattice, state, Lanczos); with a margin.
 constexpr std::int64_t kBytesPerBar = 100;
 std::int64_t memoryEstimate(int nx, int ny, int nz);
 // Throws std::invalid_argument, before anything is allocated, if the estimate
