@@ -7,7 +7,7 @@ import os
 import numpy as np
 import pytest
 
-from conftest import FAST, colour_share, picture
+from conftest import FAST, ROOT, colour_share, picture
 from ldem import study
 from ldem.cube import CubeTest
 
@@ -245,3 +245,13 @@ def test_threads_per_case_are_the_studys():
     assert _common(args(scheduler="tcp://elsewhere:8786"))["threads"] == 1
     assert _common(args(scheduler="tcp://elsewhere:8786", threads=4))["threads"] == 4
     assert _common(args(jobs=2))["threads"] == max(1, (os.cpu_count() or 1) // 2)
+
+
+def test_no_study_lock_is_committed():
+    """A study's .lock names a process of one machine: committed, it would stop a
+    study in that folder on every other machine."""
+    import subprocess
+
+    r = subprocess.run(["git", "-C", ROOT, "ls-files", "*.lock", "**/.lock"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr  # the suite runs on a checkout (CI: a fresh clone)
+    assert r.stdout.strip() == "", r.stdout
