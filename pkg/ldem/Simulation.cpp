@@ -120,6 +120,12 @@ double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTi
 
 void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }
 
+const std::vector<std::int32_t>& Simulation::group(const std::string& name) const {
+    const auto it = groups_.find(name);
+    if (it == groups_.end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
+    return it->second;
+}
+
 double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     const std::vector<double>& f = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
     double sum = 0;

@@ -148,6 +148,7 @@ public:
     const Prescribed& prescribed() const { return pre_; }
     const Measures& measures() const { return meas_; }
     const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
+    const std::vector<std::int32_t>& group(const std::string& name) const;  // throws on an unknown name
     const BarState& bars() const { return bars_; }
     const Field3& displacements() const { return u_; }
     std::vector<double> fractureEnergyField() const;  // G_f of every bar (recomputed from the seed)

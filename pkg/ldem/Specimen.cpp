@@ -1,18 +1,11 @@
 #include "ldem/Specimen.hpp"
 
-#include <stdexcept>
 
 namespace ldem {
 
 void Prescribed::add(std::int32_t n, int d, double w) {
     mask[n] |= std::uint8_t(1u << d);
     node.push_back(n), dim.push_back(std::uint8_t(d)), weight.push_back(w);
-}
-
-const std::vector<std::int32_t>& Specimen::group(const std::string& name) const {
-    const auto it = groups.find(name);
-    if (it == groups.end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
-    return it->second;
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p) {

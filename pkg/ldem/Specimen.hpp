@@ -40,7 +40,6 @@ struct Specimen {
     std::map<std::string, std::vector<std::int32_t>> groups;
     Prescribed prescribed;
     Measures measures;
-    const std::vector<std::int32_t>& group(const std::string& name) const;  // throws on an unknown name
 };
 
 // The cube of nx x ny x nz modules (LDEM_SPEC section 6): groups "bottom" (the

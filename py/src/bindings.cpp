@@ -352,11 +352,7 @@ PYBIND11_MODULE(_core, m) {
                                    return names;
                                })
         .def(
-            "group", [](const Simulation& s, const std::string& name) {
-                const auto it = s.groups().find(name);
-                if (it == s.groups().end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
-                return toNumpy(it->second);
-            },
+            "group", [](const Simulation& s, const std::string& name) { return toNumpy(s.group(name)); },
             py::arg("name"), "the nodes of a named group (the cube: 'bottom', 'top')")
         .def_property_readonly("fracture_energy_field", [](const Simulation& s) { return toNumpy(s.fractureEnergyField()); })
         .def_property_readonly("rupture_energy", [](const Simulation& s) { return toNumpy(s.ruptureEnergies()); },
