@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <tuple>
+#include <utility>
 #include <stdexcept>
 #include <string>
 
@@ -26,15 +27,56 @@ std::int64_t expectedBarCount(int nx, int ny, int nz) {
 
 namespace {
 
-// Number of modules along one axis that touch a lattice plane at index j of [0, n].
-int modulesBeside(int j, int n) { return (j > 0 ? 1 : 0) + (j < n ? 1 : 0); }
+// The share of bar (p, q, r) of family fam in lat (whose mask is set): the
+// fraction of a full bar's EA and Af it carries, 0 if the bar does not exist.
+double barShare(const Lattice& lat, const BarFamily& fam, int p, int q, int r) {
+    switch (fam.kind) {
+        case BarKind::Edge: {
+            // k/4, k = present modules around the edge; they have the edge's
+            // index along it and its index or one less across it.
+            const int u = (fam.axis + 1) % 3, v = (fam.axis + 2) % 3;
+            int k = 0;
+            for (int c = 0; c < 4; ++c) {
+                std::array<int, 3> idx{p, q, r};
+                idx[u] -= c & 1, idx[v] -= c >> 1;
+                k += lat.present(idx[0], idx[1], idx[2]);
+            }
+            return k / 4.0;
+        }
+        case BarKind::CentreCentre:
+            return lat.present(p, q, r) && lat.present(p + fam.offsetB[0], q + fam.offsetB[1], r + fam.offsetB[2])
+                       ? 1.0
+                       : 0.0;
+        case BarKind::Diagonal:
+            return lat.present(p, q, r) ? 1.0 : 0.0;
+    }
+    return 0.0;
+}
 
-// Share k/4 of an edge bar along `axis` at box index idx: k = modules around it.
-double edgeShare(const std::array<int, 3>& idx, int axis, const int n[3]) {
-    int k = 1;
-    for (int o = 0; o < 3; ++o)
-        if (o != axis) k *= modulesBeside(idx[o], n[o]);
-    return k / 4.0;
+// Splits a row of bars with shares s (0 = no bar) into runs [p0, p1) of
+// existing bars that one BarRow can carry: the hot loop gives a row's first
+// and last bar endShare and the others share, so a run's shares must read
+// e, i, i, ..., i, e. Each run is taken as long as possible from its start,
+// so a row that already fits (every row of a full box) stays one run.
+std::vector<std::pair<int, int>> rowSegments(const std::vector<double>& s) {
+    std::vector<std::pair<int, int>> out;
+    const int n = int(s.size());
+    for (int p0 = 0; p0 < n;) {
+        if (s[p0] == 0) {
+            ++p0;
+            continue;
+        }
+        int p1 = p0 + 1;
+        if (p1 < n && s[p1] != 0) {
+            int last = p1;  // the last bar with the interior share s[p0 + 1]
+            while (last + 1 < n && s[last + 1] == s[p1]) ++last;
+            if (s[p1] == s[p0]) p1 = last + 1;                          // e, e, ..., e
+            else if (last + 1 < n && s[last + 1] == s[p0]) p1 = last + 2;  // e, i, ..., i, e
+        }
+        out.emplace_back(p0, p1);
+        p0 = p1;
+    }
+    return out;
 }
 
 }  // namespace
@@ -95,29 +137,44 @@ void checkMemory(int nx, int ny, int nz) {
 }
 
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) {
+    return buildLattice(nx, ny, nz, L0, m, {});
+}
+
+Lattice buildLattice(int nx, int ny, int nz, double L0, const Material& m,
+                     const std::vector<std::uint8_t>& moduleMask) {
     if (nx < 1 || ny < 1 || nz < 1)
         throw std::invalid_argument("a lattice needs at least one module per direction");
     if (!(L0 > 0) || !std::isfinite(L0))
         throw std::invalid_argument("module size L0 must be positive (got " + std::to_string(L0) + " m)");
     m.validate();
+    const std::size_t modules = std::size_t(nx) * ny * nz;
+    if (!moduleMask.empty() && moduleMask.size() != modules)
+        throw std::invalid_argument("the module mask has " + std::to_string(moduleMask.size()) +
+                                    " entries for " + std::to_string(modules) + " modules");
+    if (!moduleMask.empty() && std::count(moduleMask.begin(), moduleMask.end(), 0) == std::ptrdiff_t(modules))
+        throw std::invalid_argument("the module mask keeps no module");
     if (expectedBarCount(nx, ny, nz) > std::int64_t(INT32_MAX))
         throw std::invalid_argument("lattice too large for 32-bit node ids");
-    checkMemory(nx, ny, nz);
+    checkMemory(nx, ny, nz);  // the box's: an upper bound for a masked lattice
 
     Lattice lat;
     lat.nx = nx, lat.ny = ny, lat.nz = nz, lat.L0 = L0;
+    lat.moduleMask = moduleMask;
     lat.mass.assign(expectedNodeCount(nx, ny, nz), 0.0);
     const double moduleMass = m.rho * L0 * L0 * L0;
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
+                if (!lat.present(i, j, k)) continue;
                 lat.mass[lat.centreId(i, j, k)] += 0.5 * moduleMass;
                 for (int c = 0; c < 8; ++c)
                     lat.mass[lat.cornerId(i + (c & 1), j + (c >> 1 & 1), k + (c >> 2))] += moduleMass / 16.0;
             }
 
+    // Nodes of no present module (mass 0) get invMass 0: with no bars and no
+    // force they stay at rest, and they carry no kinetic energy.
     lat.invMass.resize(lat.mass.size());
-    for (std::size_t i = 0; i < lat.mass.size(); ++i) lat.invMass[i] = 1.0 / lat.mass[i];
+    for (std::size_t i = 0; i < lat.mass.size(); ++i) lat.invMass[i] = lat.mass[i] > 0 ? 1.0 / lat.mass[i] : 0.0;
 
     // Families.
     const double An = normalBarArea(m.nu, L0), Ad = diagonalBarArea(m.nu, L0);
@@ -146,7 +203,8 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
             {(di - 0.5) * L0, (dj - 0.5) * L0, (dk - 0.5) * L0}, Ad, Afd);
     }
 
-    // Rows of bars, sorted by layer (then family, then y), numbered in that order.
+    // Rows of bars, sorted by layer (then family, then y), numbered in that
+    // order; a row's segments (see rowSegments) follow each other along x.
     auto layerOf = [](NodeKind kind, int k) { return 2 * k + (kind == NodeKind::Centre ? 1 : 0); };
     std::vector<std::tuple<int, int, int, int>> rows;  // (layer, family, q, r)
     for (int f = 0; f < int(lat.families.size()); ++f) {
@@ -157,42 +215,46 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
                 rows.emplace_back(std::min(layerOf(fam.kindA, r), layerOf(fam.kindB, r + fam.offsetB[2])), f, q, r);
     }
     std::sort(rows.begin(), rows.end());
-    // rowFirst / rowLayer [f][q + box_y r]: a row's first bar (numbered within its layer) and its layer.
-    std::vector<std::vector<std::int64_t>> rowFirst(lat.families.size());
+    // rowBarRows / rowLayer [f][q + box_y r]: the BarRows [first, end) of a row and its layer.
+    std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> rowBarRows(lat.families.size());
     std::vector<std::vector<std::int32_t>> rowLayer(lat.families.size());
     for (std::size_t f = 0; f < lat.families.size(); ++f)
-        rowFirst[f].assign(std::size_t(lat.families[f].box[1]) * lat.families[f].box[2], -1),
-            rowLayer[f].assign(rowFirst[f].size(), -1);
+        rowBarRows[f].assign(std::size_t(lat.families[f].box[1]) * lat.families[f].box[2], {0, 0}),
+            rowLayer[f].assign(rowBarRows[f].size(), -1);
     std::int64_t next = 0, layerFirst = 0;
     int currentLayer = -1;
     lat.barLayerStart.assign(lat.numLayers() + 1, 0);
+    std::vector<double> shares;
     for (const auto& [layer, f, q, r] : rows) {
         const BarFamily& fam = lat.families[f];
         if (layer != currentLayer) currentLayer = layer, layerFirst = next;
-        BarRow row;
-        row.first = next;
-        row.inLayer = std::int32_t(next - layerFirst);
-        row.nodeA = lat.nodeId(fam.kindA, 0, q, r);
-        row.nodeB = lat.nodeId(fam.kindB, fam.offsetB[0], q + fam.offsetB[1], r + fam.offsetB[2]);
-        row.count = fam.box[0];
-        row.family = std::uint8_t(f);
-        row.share = row.endShare = 1.0;
-        if (fam.kind == BarKind::Edge) {
-            // Interior of the row along x, then its two ends (they differ only
-            // for edges not along x, whose ends lie on the x faces).
-            row.endShare = edgeShare({0, q, r}, fam.axis, n);
-            row.share = nx >= 2 ? edgeShare({1, q, r}, fam.axis, n) : row.endShare;
+        shares.resize(fam.box[0]);
+        for (int p = 0; p < fam.box[0]; ++p) shares[p] = barShare(lat, fam, p, q, r);
+        const std::size_t qr = q + std::size_t(fam.box[1]) * r;
+        rowBarRows[f][qr].first = std::int32_t(lat.barRows.size());
+        rowLayer[f][qr] = layer;
+        for (const auto& [p0, p1] : rowSegments(shares)) {
+            BarRow row;
+            row.first = next;
+            row.inLayer = std::int32_t(next - layerFirst);
+            row.nodeA = lat.nodeId(fam.kindA, p0, q, r);
+            row.nodeB = lat.nodeId(fam.kindB, p0 + fam.offsetB[0], q + fam.offsetB[1], r + fam.offsetB[2]);
+            row.count = p1 - p0;
+            row.family = std::uint8_t(f);
+            row.endShare = shares[p0];
+            row.share = row.count >= 3 ? shares[p0 + 1] : row.endShare;
+            next += row.count;
+            lat.barRows.push_back(row);
+            ++lat.barLayerStart[layer + 1];
         }
-        rowFirst[f][q + std::size_t(fam.box[1]) * r] = row.inLayer;
-        rowLayer[f][q + std::size_t(fam.box[1]) * r] = layer;
-        next += row.count;
+        rowBarRows[f][qr].second = std::int32_t(lat.barRows.size());
         lat.maxBarsInLayer = std::max(lat.maxBarsInLayer, std::int32_t(next - layerFirst));
-        lat.barRows.push_back(row);
-        ++lat.barLayerStart[layer + 1];
     }
     for (int m = 0; m < lat.numLayers(); ++m) lat.barLayerStart[m + 1] += lat.barLayerStart[m];
 
-    // Rows of nodes, layer by layer, with the bars that meet them in family order.
+    // Rows of nodes, layer by layer, with the bars that meet them in family
+    // order: one incidence per segment, and a node lies in at most one
+    // segment of a row, so its summation order does not depend on the mask.
     lat.nodeLayerStart.assign(lat.numLayers() + 1, 0);
     for (int m = 0; m < lat.numLayers(); ++m) {
         const NodeKind kind = m % 2 ? NodeKind::Centre : NodeKind::Corner;
@@ -208,12 +270,14 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
                     const std::array<int, 3> o = end == 0 ? std::array<int, 3>{0, 0, 0} : fam.offsetB;
                     const int q = j - o[1], r = k - o[2];
                     if (q < 0 || q >= fam.box[1] || r < 0 || r >= fam.box[2]) continue;
-                    // node i meets bar p = i - o[0] of the row, valid for p in [0, box_x)
-                    const int begin = std::max(0, o[0]), stop = std::min(cx, fam.box[0] + o[0]);
-                    if (begin >= stop) continue;
                     const std::size_t qr = q + std::size_t(fam.box[1]) * r;
-                    row.incidences.push_back({rowLayer[f][qr], std::int32_t(rowFirst[f][qr] - o[0]), begin, stop,
-                                              end == 0 ? 1.0 : -1.0});
+                    for (std::int32_t s = rowBarRows[f][qr].first; s < rowBarRows[f][qr].second; ++s) {
+                        // node i meets bar p = i - o[0] of the row, p in [p0, p0 + count) for this segment
+                        const BarRow& seg = lat.barRows[s];
+                        const std::int32_t p0 = seg.nodeA - lat.nodeId(fam.kindA, 0, q, r);
+                        row.incidences.push_back({rowLayer[f][qr], seg.inLayer - p0 - o[0], p0 + o[0],
+                                                  p0 + seg.count + o[0], end == 0 ? 1.0 : -1.0});
+                    }
                 }
             }
             lat.nodeRows.push_back(std::move(row));

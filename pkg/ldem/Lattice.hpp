@@ -15,6 +15,13 @@
 // plane z = (k + 1/2) L0. A bar belongs to the lower layer of its two ends.
 // Rows are stored layer by layer, and bars are numbered in that order, so the
 // bars of a few consecutive layers are close together in memory.
+//
+// Module mask: a lattice may keep only some modules of its nx x ny x nz box
+// (a notched or non-prismatic specimen). Node ids stay those of the box, so
+// positions and ids still follow from (i, j, k); nodes of no present module
+// get mass 0 and no bars. A family's row then becomes one or more BarRows
+// (segments), one per run of bars that exist and whose shares fit the row's
+// (share, endShare) pattern; a full box keeps one BarRow per row.
 #pragma once
 #include <array>
 #include <cstdint>
@@ -39,8 +46,8 @@ struct BarFamily {
     double Af;                   // fracture area of a full bar [m^2]
 };
 
-// A row of bars of one family: bars first .. first+count-1 join nodes
-// nodeA+p and nodeB+p (p = 0 .. count-1).
+// A row of bars of one family (or, in a masked lattice, a segment of one):
+// bars first .. first+count-1 join nodes nodeA+p and nodeB+p (p = 0 .. count-1).
 struct BarRow {
     std::int64_t first;
     std::int32_t inLayer;  // first - (number of the first bar of the row's layer)
@@ -74,6 +81,13 @@ struct Lattice {
     std::vector<NodeRow> nodeRows;  // by layer
     std::vector<std::int32_t> barLayerStart, nodeLayerStart;  // rows of layer m: [start[m], start[m+1])
     std::int32_t maxBarsInLayer = 0;
+    std::vector<std::uint8_t> moduleMask;  // module (i, j, k) at i + nx (j + ny k), nonzero = present; empty = all
+
+    // Whether module (i, j, k) is present (false outside the box).
+    bool present(int i, int j, int k) const {
+        if (i < 0 || i >= nx || j < 0 || j >= ny || k < 0 || k >= nz) return false;
+        return moduleMask.empty() || moduleMask[i + std::size_t(nx) * (j + std::size_t(ny) * k)] != 0;
+    }
 
     std::int64_t numNodes() const { return std::int64_t(mass.size()); }
     std::int64_t numBars() const { return barRows.back().first + barRows.back().count; }
@@ -113,7 +127,8 @@ BarTable listBars(const Lattice& lat);
 // Reference coordinates of every node [m].
 std::array<std::vector<double>, 3> nodePositions(const Lattice& lat);
 
-// Node and bar counts of an nx x ny x nz lattice (spec section 1).
+// Node and bar counts of an nx x ny x nz lattice (spec section 1); for a
+// masked lattice, the bar count is an upper bound.
 std::int64_t expectedNodeCount(int nx, int ny, int nz);
 std::int64_t expectedBarCount(int nx, int ny, int nz);
 // Memory a run of such a lattice takes: ldem-bench's peak resident size per bar
@@ -128,5 +143,16 @@ void checkMemory(int nx, int ny, int nz);
 // the Nayfeh-Hefzy equivalence for material m and lumped masses rho L0^3
 // (half to the centre node, 1/16 to each corner).
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m);
+
+// The same lattice clipped to the modules of moduleMask (nx ny nz entries,
+// module (i, j, k) at i + nx (j + ny k), nonzero = present; empty = all present).
+// A present module brings its mass, its 8 diagonals and its share of the
+// edges: an edge bar exists if a module around it is present and carries k/4
+// of a full bar, k = present modules around it; a centre-centre bar exists if
+// both its modules are present. Nodes of no present module keep their id but
+// have mass 0, invMass 0 and no bars. A full mask gives buildCubicLattice's
+// lattice, bar numbers included.
+Lattice buildLattice(int nx, int ny, int nz, double L0, const Material& m,
+                     const std::vector<std::uint8_t>& moduleMask);
 
 }  // namespace ldem

@@ -73,13 +73,15 @@ double lastEigenvectorComponent(const std::vector<double>& a, const std::vector<
 Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_t>& mask, int maxIterations,
                                double tolerance) {
     const std::int64_t n = lat.numNodes();
-    // s = M^-1/2 on free DOFs, 0 on prescribed ones: A = S K S.
+    // s = M^-1/2 on free DOFs, 0 on prescribed ones: A = S K S. A node of mass 0
+    // (of no present module of a masked lattice: no bars) is removed like a prescribed one.
     Field3 s(n);
     std::int64_t freeDofs = 0;
     for (std::int64_t i = 0; i < n; ++i) {
-        const double r = 1.0 / std::sqrt(lat.mass[i]);
+        const bool removed = !(lat.mass[i] > 0);
+        const double r = removed ? 0.0 : 1.0 / std::sqrt(lat.mass[i]);
         s.x[i] = (mask[i] & 1) ? 0 : r, s.y[i] = (mask[i] & 2) ? 0 : r, s.z[i] = (mask[i] & 4) ? 0 : r;
-        freeDofs += !(mask[i] & 1) + !(mask[i] & 2) + !(mask[i] & 4);
+        if (!removed) freeDofs += !(mask[i] & 1) + !(mask[i] & 2) + !(mask[i] & 4);
     }
     Field3 q(n), qPrev(n), w(n), tmp(n);
     BarForceBuffers barWork;
