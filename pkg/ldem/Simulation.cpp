@@ -31,6 +31,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     mat_.validate();
     load_.validate();
     run_.validate();
+    validate(specimen);
     setThreads(run_.threads);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
@@ -68,7 +69,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
     } else {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
-        const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * meas_.meanDriveWeight);
+        const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * std::abs(meas_.meanDriveWeight));
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
 
@@ -133,7 +134,7 @@ double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     return sum;
 }
 
-double Simulation::supportStress() const { return groupForce(*support_) / meas_.area; }
+double Simulation::supportStress() const { return meas_.sense() * groupForce(*support_) / meas_.area; }
 
 bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
@@ -143,7 +144,11 @@ CurvePoint Simulation::measure() const {
     p.time = time_;
     p.meanStrain = meanStrainAt(time_);
     p.stress = supportStress();
-    p.stressLoaded = (0.0 - groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
+    p.stressLoaded = (0.0 - meas_.sense() * groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
+    for (const Probe& q : meas_.probes) {
+        const std::vector<double>& u = q.dim == 0 ? u_.x : q.dim == 1 ? u_.y : u_.z;
+        p.probes.push_back(u[q.b] - (q.a >= 0 ? u[q.a] : 0.0));
+    }
     const BarEnergies e = barEnergies(lat_, u_, bars_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_.mass, pre_.mask, v_);

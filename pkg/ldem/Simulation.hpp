@@ -6,6 +6,7 @@
 // (computeForces, measure, advance) so that state n can be measured between
 // them; the arithmetic is that of step(), bit for bit (tests/cpp/test_dynamics).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -33,6 +34,7 @@ struct CurvePoint {
     double meanStrain = 0;    // mean vertical displacement of the upper nodes / height
     double stress = 0;        // reactions of the support group along the measured direction / area [Pa]
     double stressLoaded = 0;  // the same on the loaded group, negated [Pa]
+    std::vector<double> probes;  // the specimen's Measures::probes [m]
     double externalWork = 0, kinetic = 0, elastic = 0, fracture = 0, damping = 0;  // [J]
     std::int64_t damaged = 0, broken = 0;
     double balanceResidual() const { return externalWork - (kinetic + elastic + fracture + damping); }
@@ -176,7 +178,7 @@ public:
 
 private:
     double meanStrainAt(double t) const {
-        return drive_.displacement(t) * meas_.meanDriveWeight / meas_.gaugeLength;
+        return drive_.displacement(t) * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength;
     }
     double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, pre_.mask, f_, u_, v_); }
     // Sum over the nodes of a group of a force component along the measured direction.

@@ -1,11 +1,58 @@
 #include "ldem/Specimen.hpp"
 
+#include <cmath>
+#include <stdexcept>
 
 namespace ldem {
 
 void Prescribed::add(std::int32_t n, int d, double w) {
     mask[n] |= std::uint8_t(1u << d);
     node.push_back(n), dim.push_back(std::uint8_t(d)), weight.push_back(w);
+}
+
+Prescribed makePrescribed(std::int64_t numNodes, const std::vector<std::int32_t>& node,
+                          const std::vector<std::uint8_t>& dim, const std::vector<double>& weight) {
+    if (dim.size() != node.size() || weight.size() != node.size())
+        throw std::invalid_argument("specimen: the prescribed DOFs' arrays differ in length");
+    Prescribed p;
+    p.mask.assign(std::size_t(numNodes), 0);
+    for (std::size_t k = 0; k < node.size(); ++k) {
+        const std::string what = "node " + std::to_string(node[k]) + " direction " + std::to_string(dim[k]);
+        if (node[k] < 0 || node[k] >= numNodes || dim[k] > 2)
+            throw std::invalid_argument("specimen: a prescribed DOF names " + what + " (the lattice has " +
+                                        std::to_string(numNodes) + " nodes, directions 0-2)");
+        if (p.mask[node[k]] >> dim[k] & 1) throw std::invalid_argument("specimen: " + what + " is prescribed twice");
+        if (!std::isfinite(weight[k])) throw std::invalid_argument("specimen: " + what + " has a weight not finite");
+        p.add(node[k], dim[k], weight[k]);
+    }
+    return p;
+}
+
+void validate(const Specimen& s) {
+    const std::int64_t n = s.lattice.numNodes();
+    auto fail = [](const std::string& what) { throw std::invalid_argument("specimen: " + what); };
+    auto checkNode = [&](std::int64_t id, const std::string& where) {
+        if (id < 0 || id >= n) fail(where + " names node " + std::to_string(id) + " (the lattice has " +
+                                    std::to_string(n) + ")");
+    };
+    for (const auto& [name, nodes] : s.groups) {
+        if (nodes.empty()) fail("group '" + name + "' has no node");
+        for (auto id : nodes) checkNode(id, "group '" + name + "'");
+    }
+    const Prescribed& p = s.prescribed;
+    if (p.mask.size() != std::size_t(n) || makePrescribed(n, p.node, p.dim, p.weight).mask != p.mask)
+        fail("the prescribed mask does not match the prescribed DOFs");
+    const Measures& m = s.measures;
+    if (m.dim < 0 || m.dim > 2) fail("the measured direction must be 0, 1 or 2");
+    if (!(m.area > 0) || !std::isfinite(m.area)) fail("the measured area must be positive");
+    if (!(m.gaugeLength > 0) || !std::isfinite(m.gaugeLength)) fail("the gauge length must be positive");
+    if (!(m.meanDriveWeight != 0) || !std::isfinite(m.meanDriveWeight))
+        fail("the loaded group is not driven along the measured direction (mean drive weight 0)");
+    for (const Probe& q : m.probes) {
+        if (q.a >= 0) checkNode(q.a, "probe '" + q.name + "'");
+        checkNode(q.b, "probe '" + q.name + "'");
+        if (q.dim < 0 || q.dim > 2) fail("probe '" + q.name + "' has direction " + std::to_string(q.dim));
+    }
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p) {

@@ -24,6 +24,17 @@ struct Prescribed {
     void add(std::int32_t n, int d, double w);
 };
 
+// A displacement read at every record: u_dim[b] - u_dim[a] (a < 0: u_dim[b] alone),
+// e.g. the crack mouth opening between two nodes across a notch.
+struct Probe {
+    std::string name;
+    std::int32_t a = -1, b = 0;
+    int dim = 0;
+};
+
+// Stress and strain are positive in the sense the specimen is driven: for a
+// drive that pushes (mean weight < 0, compression, bending from above) both
+// are reported with the sign turned (sense() = -1), so a peak is a maximum.
 struct Measures {
     std::string support;        // group whose reactions along dim, over area, are the stress
     std::string loaded;         // the driven group: the same reactions, negated (their counterpart)
@@ -32,7 +43,9 @@ struct Measures {
     double gaugeLength = 0;     // [m]: drive velocity = strain rate x gauge length
     double meanDriveWeight = 0; // mean weight of the loaded group's DOFs along dim:
                                 // mean strain = U(t) x meanDriveWeight / gaugeLength
+    std::vector<Probe> probes;  // extra displacements in every record
     // The specimen is split when no chain of intact bars joins support and loaded.
+    double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
 };
 
 struct Specimen {
@@ -41,6 +54,16 @@ struct Specimen {
     Prescribed prescribed;
     Measures measures;
 };
+
+// Prescribed DOFs u[node[k]][dim[k]] = weight[k] U(t); throws std::invalid_argument
+// on a node out of range, a direction not 0-2, a DOF listed twice.
+Prescribed makePrescribed(std::int64_t numNodes, const std::vector<std::int32_t>& node,
+                          const std::vector<std::uint8_t>& dim, const std::vector<double>& weight);
+
+// Throws std::invalid_argument naming what is wrong: a node id out of range,
+// a direction not 0-2, a prescribed DOF listed twice, measures without an
+// area, a gauge length or a driven DOF, a probe on no node.
+void validate(const Specimen& s);
 
 // The cube of nx x ny x nz modules (LDEM_SPEC section 6): groups "bottom" (the
 // support: z held; x, y held, or on rollers with only the rigid motion pinned)

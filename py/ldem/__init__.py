@@ -8,5 +8,6 @@ fracture and size effects in concrete. See README.md for the manual.
 from ._core import InstabilityError, Material, Simulation  # noqa: F401
 from .cube import CURVE_COLUMNS, CubeResult, CubeTest  # noqa: F401
 from .runner import run_cube  # noqa: F401
+from .specimen import SpecimenTest  # noqa: F401
 
 __version__ = "0.1.0"

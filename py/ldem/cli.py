@@ -14,8 +14,7 @@ import numpy as np
 
 from .helptext import HelpFormatter
 
-EXIT_BAD_INPUT = 2
-EXIT_FAILED = 1
+EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
 
 
 class _Parser(argparse.ArgumentParser):
@@ -82,9 +81,14 @@ def cmd_cube(args) -> int:
     result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=snapshots,
                       checkpoint_every=args.checkpoint_every, restart=bool(args.restart))
-    s = result.summary
+    return report_run(result, args, edge=test.load == "triangular")
+
+
+def report_run(result, args, edge: bool = False) -> int:
+    """The lines a run prints (ldem cube, ldem run); exit 1 on an energy error."""
+    s, test = result.summary, result.test
     print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
-          + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if test.load == "triangular" else ""))
+          + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if edge else ""))
     loss, sep = s["load_loss"], s["separation"]
     if loss:
         print(f"load lost at mean strain {loss['mean_strain']:.4e}: fracture energy {loss['fracture_energy_J']:.4g} J "
@@ -93,7 +97,7 @@ def cmd_cube(args) -> int:
         print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
               f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J, "
               f"cheapest cut {s['U_mincut_J'] / s['min_fracture_energy_J']:.3f} U_min)")
-    else:
+    elif test.stop_at == "separation":
         print(f"NOT separated (stop: {s['stop_reason']}): fracture energy at the end {s['fracture_energy_J']:.4g} J "
               f"is not U_num")
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
@@ -101,18 +105,17 @@ def cmd_cube(args) -> int:
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
     f = args.figure_format
-    print(f"wrote {args.out}/: curve.csv summary.json" + ("" if args.no_plots else
-                                                           f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
+    print(f"wrote {args.out}/: curve.csv summary.json"
+          + ("" if args.no_plots else f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
     if s["energy_error"]:
-        print(f"ldem cube: failed: energy balance error {s['energy_balance_error']:.2e} is above the tolerance "
+        print(f"ldem {args.command}: failed: energy balance error {s['energy_balance_error']:.2e} is above the tolerance "
               f"{test.energy_tolerance:g}: energy was created or lost by the integration; the results are "
               f"not trustworthy (summary.json says energy_error)", file=sys.stderr)
         return EXIT_FAILED
     return 0
 
 
-# The summary's numbers that a rerun must reproduce exactly (the rest is when,
-# where and how fast).
+# The summary's numbers that a rerun must reproduce exactly (not when, where, how fast).
 RERUN_KEYS = ("peak_stress_MPa", "strain_at_peak", "edge_strain_at_peak", "separated", "U_num_J", "load_loss",
               "separation", "fracture_energy_J", "U_mincut_J", "energy_balance_error", "stop_reason", "steps",
               "n_bars", "clamped_bars", "dt_s")
@@ -153,6 +156,18 @@ def cmd_rerun(args) -> int:
     return 0 if not differ else EXIT_FAILED
 
 
+def cmd_run(args) -> int:
+    from .cube import settings
+    from .runner import run_cube
+    from .specimen import SpecimenTest
+
+    test = SpecimenTest.from_file(args.file, settings(args.set))
+    args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
+    result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
+                      figure_format=args.figure_format)
+    return report_run(result, args)
+
+
 def bench_program() -> str:
     """The ldem-bench program: beside the installed package's command, or in the build tree."""
     here = os.path.dirname(os.path.abspath(__file__))
@@ -175,6 +190,13 @@ def cmd_bench(args) -> int:
     return subprocess.run(cmd).returncode
 
 
+def _output_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--no-progress", action="store_true", help="no progress bar")
+    p.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
+    p.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
+                   help="format of the pictures (pdf and svg: vector, for papers)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     from . import __version__
     from .cube import provenance
@@ -192,10 +214,7 @@ def build_parser() -> argparse.ArgumentParser:
                        formatter_class=HelpFormatter)
     add_cube_options(c)
     c.add_argument("--out", default=os.path.join("out", "cube"), metavar="DIR", help="output folder")
-    c.add_argument("--no-progress", action="store_true", help="no progress bar")
-    c.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
-    c.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
-                   help="format of the pictures (pdf and svg: vector, for papers)")
+    _output_options(c)
     c.add_argument("--checkpoint-every", type=int, default=0, metavar="ROWS",
                    help="write checkpoint.npz (the whole state) every ROWS curve rows; 0: never")
     c.add_argument("--restart", default=None, metavar="DIR",
@@ -205,6 +224,17 @@ def build_parser() -> argparse.ArgumentParser:
                    help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
                         "(comma-separated; the end state is always written)")
     c.set_defaults(func=cmd_cube)
+
+    f = sub.add_parser("run", help="any specimen from a TOML file (examples/: beams, cylinders, dog-bones, cubes)",
+                       description="Runs the specimen FILE describes (README 'Specimens from a file'); writes what "
+                                   "ldem cube writes into --out. A bad file: one line naming the key and its line, "
+                                   "exit 2.", formatter_class=HelpFormatter)
+    f.add_argument("file", metavar="FILE", help="the specimen's TOML file")
+    f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
+    f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
+    _output_options(f)
+    f.set_defaults(func=cmd_run)
 
     b = sub.add_parser("bench", help="time the time step of an N^3 cube (one line of JSON)",
                        description="Builds an N^3 cube (default material), runs S steps of uniform loading R "
@@ -233,8 +263,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 class Terminated(KeyboardInterrupt):
-    """SIGTERM, handled as Ctrl-C is: the run stops at its next record and
-    leaves a summary that says it was interrupted."""
+    """SIGTERM, handled as Ctrl-C: the run stops at its next record, its summary says interrupted."""
 
 
 def _terminate(signum, frame):

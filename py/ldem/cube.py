@@ -54,6 +54,9 @@ class _CubeTestMethods:
     def parameters(self) -> dict:
         return dataclasses.asdict(self)
 
+    def describe(self) -> str:
+        return f"{self.size:g} m cube, {self.load}, seed {self.seed}"
+
     # -- running ------------------------------------------------------------
     def run(self, observers=(), simulation=None, previous_rows=()) -> "CubeResult":
         """Runs the test to separation (or load loss, see stop_at; or the final
@@ -88,6 +91,22 @@ class _CubeTestMethods:
             e.ldem_result = CubeResult(self, sim, rows, None, time.perf_counter() - t0, e)
             raise
         return CubeResult(self, sim, rows, summary, time.perf_counter() - t0)
+
+
+def settings(pairs) -> dict:
+    """--set NAME=VALUE pairs (ldem study, ldem run) as CubeTest fields of the right type."""
+    fields = {f.name: f for f in dataclasses.fields(CubeTest)}
+    out = {}
+    for pair in pairs:
+        name, sep, value = pair.partition("=")
+        name = name.strip().replace("-", "_")
+        if not sep or name not in fields:
+            raise ValueError(f"--set takes NAME=VALUE with NAME a parameter of ldem cube --help (got '{pair}')")
+        try:
+            out[name] = type(fields[name].default)(value)
+        except ValueError:
+            raise ValueError(f"--set {name}: '{value}' is not a {type(fields[name].default).__name__}") from None
+    return out
 
 
 def _field(p: dict) -> tuple:
@@ -127,7 +146,7 @@ class CubeResult:
             self.status = "done"
         else:
             self.status = "interrupted" if isinstance(error, KeyboardInterrupt) else "failed"
-        self.curve = {c: np.array([r[c] for r in rows], dtype=float) for c in CURVE_COLUMNS}
+        self.curve = {c: np.array([r[c] for r in rows], dtype=float) for c in (list(rows[0]) if rows else CURVE_COLUMNS)}
         self.summary = _summary_dict(test, sim, self.curve, summary, wall_s, self.status)
         if error is not None:
             self.summary["error"] = str(error) or type(error).__name__

@@ -62,11 +62,16 @@ class CurveCsv:
     def __init__(self, path: str, append: bool = False):
         self.path = path
         self._f = open(path, "a" if append else "w")
-        if not append:
-            self._write(",".join(CURVE_COLUMNS) + "\n")
+        self._columns = None
+        if append:
+            with open(path) as f:
+                self._columns = f.readline().strip().split(",") or None
 
     def __call__(self, row: dict) -> None:
-        self._write(",".join(_cell(row[c]) for c in CURVE_COLUMNS) + "\n")
+        if self._columns is None:  # the header: the cube's columns, then a specimen's probes
+            self._columns = list(row)
+            self._write(",".join(self._columns) + "\n")
+        self._write(",".join(_cell(row[c]) for c in self._columns) + "\n")
 
     def _write(self, line: str) -> None:
         try:
@@ -224,7 +229,8 @@ def cut_curve_after(path: str, step: int) -> List[dict]:
     keep = [lines[0]] + [ln for ln in lines[1:] if ln.endswith("\n") and int(ln.split(",", 1)[0]) <= step]
     with atomic(path) as tmp, open(tmp, "w") as f:
         f.writelines(keep)
-    return [dict(zip(CURVE_COLUMNS, (float(x) for x in ln.split(",")))) for ln in keep[1:]]
+    columns = keep[0].strip().split(",")
+    return [dict(zip(columns, (float(x) for x in ln.split(",")))) for ln in keep[1:]]
 
 
 class Checkpoints:

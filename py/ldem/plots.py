@@ -40,14 +40,12 @@ STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 def curve_figure(result, path: str) -> None:
     c, s = result.curve, result.summary
     fig, ax = plt.subplots()
-    ax.plot(c["mean_strain"], c["stress_MPa"], label="lower face (reaction)")
-    ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="upper face")
+    ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
+    ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
     if "peak_stress_MPa" in s:
         ax.plot(s["strain_at_peak"], s["peak_stress_MPa"], "ko", ms=5,
                 label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
-    t = result.test
-    ax.set(xlabel=STRAIN_LABEL, ylabel=STRESS_LABEL, title=f"{t.size:g} m cube, {t.load} loading, seed {t.seed}"
-           + energy_flag(s))
+    ax.set(xlabel=STRAIN_LABEL, ylabel=STRESS_LABEL, title=result.test.describe() + energy_flag(s))
     ax.legend()
     save(fig, path)
 

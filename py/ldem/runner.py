@@ -18,7 +18,7 @@ from .progress import ProgressBar
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
              simulation=None, figure_format: str = "png", snapshots: Sequence[float] = (),
              checkpoint_every: int = 0, restart: bool = False, observers: Sequence = ()) -> CubeResult:
-    """Runs test; with out, writes curve.csv (row by row), summary.json (also
+    """Runs test (an ldem.CubeTest or an ldem.specimen.SpecimenTest); with out, writes curve.csv (row by row), summary.json (also
     when the run fails or is interrupted: status says so) and, with plots,
     curve, energies and cracks pictures (figure_format: png, pdf or svg) and
     the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu at each mean strain of
@@ -102,5 +102,5 @@ def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:
     plots.curve_figure(result, os.path.join(out, f"curve.{fmt}"))
     plots.energy_figure(result, os.path.join(out, f"energies.{fmt}"))
     plots.crack_figure(result.sim, os.path.join(out, f"cracks.{fmt}"),
-                       title=f"{result.test.size:g} m cube, {result.test.load}, seed {result.test.seed}: "
+                       title=f"{result.test.describe()}: "
                              f"mean strain {result.curve['mean_strain'][-1]:.2e}")

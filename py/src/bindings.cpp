@@ -173,7 +173,8 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("fracture", &CurvePoint::fracture)
         .def_readonly("damping", &CurvePoint::damping)
         .def_readonly("damaged", &CurvePoint::damaged)
-        .def_readonly("broken", &CurvePoint::broken);
+        .def_readonly("broken", &CurvePoint::broken)
+        .def_readonly("probes", &CurvePoint::probes, "the specimen's probes, in their order [m]");
 
     py::class_<RunEvent>(m, "RunEvent", "an event of the run: step (-1: not reached), time, mean strain, fracture energy")
         .def_readonly("step", &RunEvent::step)
@@ -240,6 +241,10 @@ PYBIND11_MODULE(_core, m) {
         });
     m.def("build_cubic_lattice", &buildCubicLattice, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"),
           py::arg("material"));
+    m.def("build_lattice", &buildLattice, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("material"),
+          py::arg("module_mask"),
+          "the lattice of the present modules of an nx x ny x nz box: module_mask[i + nx (j + ny k)] != 0 "
+          "(empty: all); nodes of no present module keep their ids with mass 0");
     m.def("expected_node_count", &expectedNodeCount);
     m.def("expected_bar_count", &expectedBarCount);
 
@@ -281,6 +286,35 @@ PYBIND11_MODULE(_core, m) {
                  return std::make_unique<Simulation>(p);
              }),
              py::arg("params"), "the cube test of params (ldem.CubeTest builds them)")
+        .def(py::init([](Lattice lattice, const std::map<std::string, std::vector<std::int32_t>>& groups,
+                         const std::vector<std::int32_t>& node, const std::vector<std::uint8_t>& dim,
+                         const std::vector<double>& weight, const py::dict& measures, const Material& mat,
+                         const LoadingParams& load, const RunParams& run) {
+                 Specimen sp;
+                 sp.prescribed = makePrescribed(lattice.numNodes(), node, dim, weight);
+                 sp.lattice = std::move(lattice);
+                 sp.groups = groups;
+                 Measures& ms = sp.measures;
+                 ms.support = measures["support"].cast<std::string>();
+                 ms.loaded = measures["loaded"].cast<std::string>();
+                 ms.dim = measures["dim"].cast<int>();
+                 ms.area = measures["area"].cast<double>();
+                 ms.gaugeLength = measures["gauge_length"].cast<double>();
+                 ms.meanDriveWeight = measures["mean_drive_weight"].cast<double>();
+                 if (measures.contains("probes"))
+                     for (const auto& q : measures["probes"].cast<py::list>()) {
+                         const auto t = q.cast<py::tuple>();
+                         ms.probes.push_back({t[0].cast<std::string>(), t[1].cast<std::int32_t>(),
+                                              t[2].cast<std::int32_t>(), t[3].cast<int>()});
+                     }
+                 py::gil_scoped_release release;
+                 return std::make_unique<Simulation>(std::move(sp), mat, load, run);
+             }),
+             py::arg("lattice"), py::arg("groups"), py::arg("prescribed_node"), py::arg("prescribed_dim"),
+             py::arg("prescribed_weight"), py::arg("measures"), py::arg("material"), py::arg("loading"), py::arg("run"),
+             "any specimen: a lattice (build_lattice), named node groups, prescribed DOFs u[node][dim] = weight x "
+             "U(t), and measures {support, loaded, dim, area, gauge_length, mean_drive_weight, probes: [(name, a, "
+             "b, dim)]} (ldem.specimen builds them from a file)")
         .def(
             "run",
             [](Simulation& s, py::object callback) {
@@ -343,6 +377,9 @@ PYBIND11_MODULE(_core, m) {
                                    d["support"] = m.support, d["loaded"] = m.loaded, d["dim"] = m.dim;
                                    d["area"] = m.area, d["gauge_length"] = m.gaugeLength;
                                    d["mean_drive_weight"] = m.meanDriveWeight;
+                                   py::list probes;
+                                   for (const Probe& q : m.probes) probes.append(py::make_tuple(q.name, q.a, q.b, q.dim));
+                                   d["probes"] = probes;
                                    return d;
                                })
         .def_property_readonly("group_names",

@@ -10,7 +10,7 @@ PACKAGE = os.path.join(ROOT, "py", "ldem")
 # Lower layers first; a module may import its own layer or those below, never above.
 LAYERS = [
     {"ldem._core"},
-    {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.yade"},            # specimen and run
+    {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.yade"},  # specimen and run
     {"ldem.io", "ldem.progress", "ldem.plots", "ldem.report", "ldem.helptext"},  # writers, pictures, reports
     {"ldem.runner"},                                                   # a run wired to its files
     {"ldem.study"},                                                    # ldem.study.* included

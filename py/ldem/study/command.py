@@ -3,12 +3,11 @@ the printed summary."""
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import time
 from typing import List, Sequence
 
 from ..helptext import HelpFormatter
-from ..cube import CubeTest
+from ..cube import CubeTest, settings
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
@@ -35,19 +34,10 @@ def _loads(text: str) -> List[str]:
 
 def _settings(pairs: Sequence[str]) -> dict:
     """--set NAME=VALUE pairs as CubeTest fields of the right type."""
-    fields = {f.name: f for f in dataclasses.fields(CubeTest)}
-    out = {}
-    for pair in pairs:
-        name, sep, value = pair.partition("=")
-        name = name.strip().replace("-", "_")
-        if not sep or name not in fields:
-            raise ValueError(f"--set takes NAME=VALUE with NAME a field of ldem.CubeTest (got '{pair}')")
-        if name in ("size", "load", "seed"):
+    out = settings(pairs)
+    for name in ("size", "load", "seed"):
+        if name in out:
             raise ValueError(f"--set {name}: the study sets it (use its own options)")
-        try:
-            out[name] = type(fields[name].default)(value)
-        except ValueError:
-            raise ValueError(f"--set {name}: '{value}' is not a {type(fields[name].default).__name__}") from None
     return out
 
 

@@ -1,0 +1,165 @@
+"""Shapes on the lattice: which modules of a bounding box a specimen keeps
+(a box with or without a notch, a cylinder, a dog-bone, a mask from a file),
+and the checks of a description's values, each error naming its key and, for
+a file, its line. Geometry only: the lattice itself is built in C++
+(ldem._core.build_lattice).
+"""
+from __future__ import annotations
+
+import math
+import os
+import re
+
+import numpy as np
+
+AXES = {"x": 0, "y": 1, "z": 2}
+_SHAPE_KEYS = {"box": {"size", "notch"}, "cylinder": {"diameter", "length", "axis"},
+               "dogbone": {"size", "neck", "radius"}, "mask": {"file", "size"}}
+
+
+class SpecimenError(ValueError):
+    """A bad specimen description: one line naming the key (and the file's line)."""
+
+
+class Where:
+    """Names a key of the description, with its line when it came from a file."""
+
+    def __init__(self, text: str = "", path: str = ""):
+        self.lines, self.path = text.splitlines(), path
+
+    def __call__(self, key: str, message: str) -> SpecimenError:
+        line = self._line(key)
+        at = f"{self.path}:{line}: " if line else (f"{self.path}: " if self.path else "")
+        return SpecimenError(f"{at}{key}: {message}")
+
+    def _line(self, key: str) -> int:
+        """The line of the dotted key: its last part written as `part =` or a
+        `[table]`, after the line of its parent, if one can be found."""
+        parts = key.split(".")
+        start = 0
+        for depth, part in enumerate(parts):
+            pattern = re.compile(r"(^|[\s{,.\[])" + re.escape(part) + r"\s*(=|\]|\.)")
+            for i in range(start, len(self.lines)):
+                if pattern.search(self.lines[i].split("#")[0]):
+                    start = i
+                    break
+            else:
+                return start + 1 if depth else 0
+        return start + 1
+
+
+def check_keys(table: dict, allowed: set, where: Where, prefix: str) -> None:
+    for k in table:
+        if k not in allowed:
+            raise where(f"{prefix}{k}", f"unknown key (expected one of {', '.join(sorted(allowed))})")
+
+
+def number(value, where: Where, key: str, positive: bool = True) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise where(key, f"must be a number (got {value!r})")
+    if positive and not value > 0:
+        raise where(key, f"must be positive (got {value!r})")
+    return float(value)
+
+
+def point(value, where: Where, key: str) -> np.ndarray:
+    if not (isinstance(value, list) and len(value) == 3):
+        raise where(key, f"must be a point [x, y, z] in m (got {value!r})")
+    return np.array([number(v, where, key, positive=False) for v in value])
+
+
+def _modules(length: float, L0: float, where: Where, key: str) -> int:
+    n = round(length / L0)
+    if n < 1 or abs(n * L0 - length) > 1e-9 * length:
+        raise where(key, f"{length:g} m is not a multiple of the module L0 = {L0:g} m")
+    return n
+
+
+# -- shapes: which modules of the bounding box are present ----------------------------------------
+
+def module_mask(shape: dict, where: Optional[Where] = None):
+    """(L0, (nx, ny, nz), mask[nx, ny, nz] bool) of a [shape] table."""
+    where = where or Where()
+    kind = shape.get("kind")
+    if kind not in _SHAPE_KEYS:
+        raise where("shape.kind", f"must be one of {', '.join(_SHAPE_KEYS)} (got {kind!r})")
+    check_keys(shape, _SHAPE_KEYS[kind] | {"kind", "L0"}, where, "shape.")
+    L0 = number(shape.get("L0"), where, "shape.L0")
+    if kind == "cylinder":
+        d = number(shape.get("diameter"), where, "shape.diameter")
+        length = number(shape.get("length"), where, "shape.length")
+        axis = AXES.get(shape.get("axis", "z"))
+        if axis is None:
+            raise where("shape.axis", f"must be x, y or z (got {shape.get('axis')!r})")
+        size = [d, d, d]
+        size[axis] = length
+    else:
+        size = shape.get("size")
+        if not (isinstance(size, list) and len(size) == 3):
+            raise where("shape.size", f"must be [x, y, z] in m (got {size!r})")
+        size = [number(s, where, "shape.size") for s in size]
+    n = tuple(_modules(s, L0, where, "shape.diameter" if kind == "cylinder" else "shape.size") for s in size)
+    # Module centres.
+    c = [(np.arange(k) + 0.5) * L0 for k in n]
+    x, y, z = np.meshgrid(*c, indexing="ij")
+    if kind == "box":
+        mask = np.ones(n, bool)
+        if "notch" in shape:
+            mask &= ~_notch(shape["notch"], x, z, size, L0, where)
+    elif kind == "cylinder":
+        r = [x, y, z]
+        across = [r[a] - 0.5 * d for a in range(3) if a != axis]
+        mask = across[0] ** 2 + across[1] ** 2 <= (0.5 * d) ** 2
+    elif kind == "dogbone":
+        mask = _dogbone(shape, x, z, size, where)
+    else:
+        mask = _mask_file(shape, n, where)
+    if not mask.any():
+        raise where("shape", "has no module")
+    return L0, n, mask
+
+
+def _notch(notch, x, z, size, L0, where) -> np.ndarray:
+    """A slot from the lower face (z = 0) up to `depth`, `width` wide (a module
+    at least), centred on `at` along x (default: mid-length)."""
+    if not isinstance(notch, dict):
+        raise where("shape.notch", "must be a table {depth, width, at}")
+    check_keys(notch, {"depth", "width", "at"}, where, "shape.notch.")
+    depth = number(notch.get("depth", 0.0), where, "shape.notch.depth", positive=False)
+    width = number(notch.get("width", L0), where, "shape.notch.width")
+    at = number(notch.get("at", 0.5 * size[0]), where, "shape.notch.at", positive=False)
+    if depth < 0 or depth >= size[2]:
+        raise where("shape.notch.depth", f"must be in [0, {size[2]:g}) m (got {depth:g})")
+    if width < L0 * (1 - 1e-9):
+        raise where("shape.notch.width", f"must be at least one module, {L0:g} m (got {width:g})")
+    return (np.abs(x - at) < 0.5 * width) & (z < depth)
+
+
+def _dogbone(shape, x, z, size, where) -> np.ndarray:
+    """Van Vliet and van Mier's dog-bone: a plate of width size[0] (x) and height
+    size[2] (z) narrowed to `neck` at mid-height by two circular arcs of `radius`."""
+    W, H = size[0], size[2]
+    neck = number(shape.get("neck"), where, "shape.neck")
+    R = number(shape.get("radius"), where, "shape.radius")
+    depth = 0.5 * (W - neck)  # each arc's cut at mid-height
+    if not 0 < depth < R:
+        raise where("shape.neck", f"must be narrower than the width {W:g} m and cut less than the radius "
+                                  f"(cut {depth:g} m, radius {R:g} m)")
+    dz = z - 0.5 * H
+    cut = np.maximum(0.0, depth - (R - np.sqrt(np.maximum(R * R - dz * dz, 0.0))))
+    cut[np.abs(dz) >= R] = 0.0
+    return (x >= cut) & (x <= W - cut)
+
+
+def _mask_file(shape, n, where) -> np.ndarray:
+    path = shape.get("file")
+    if not isinstance(path, str):
+        raise where("shape.file", "must name a .npy file of a boolean array (modules along x, y, z)")
+    base = os.path.dirname(where.path) if where.path else ""
+    try:
+        mask = np.load(os.path.join(base, path))
+    except (OSError, ValueError) as e:
+        raise where("shape.file", f"cannot read {path}: {e}") from None
+    if mask.shape != n:
+        raise where("shape.file", f"{path} has shape {mask.shape}; size / L0 gives {n}")
+    return mask.astype(bool)

@@ -1,0 +1,299 @@
+"""Any specimen from a file (`ldem run specimen.toml`) or a dict of the same
+shape: a shape cut out of the cubic lattice, named groups of nodes, what each
+group does (held, driven, free) and what the run measures.
+
+    test = ldem.SpecimenTest.from_file("examples/beam_3pb.toml")
+    result = test.run()          # data; ldem.run_cube(test, out=...) writes the files too
+
+The file (examples/ has one per classic test; README "Specimens from a file"):
+    title = "..."
+    [shape]      kind = "box" | "cylinder" | "dogbone" | "mask", L0 [m] and the kind's sizes [m]
+    [groups.NAME] face = "z-" | plane = {x = 0.1} | box = {min = [..], max = [..]} | point = [x, y, z]
+                 (several selectors: the nodes all of them select) | union = ["a", "b"]
+                 fix = ["x", "z"] (held at 0), drive = {z = -1.0} (u_z = -1 x U(t)), linear = "x"
+                 (the drive's weight grows linearly from 0 to its value across the group along x)
+    [measure]    support, loaded (group names), area [m^2], gauge_length [m],
+                 probes = {cmod = {a = [..], b = [..], direction = "x"}}
+    [material], [loading], [run]: any parameter of `ldem cube --help` in those groups
+
+Stress = reactions of the support group along the drive's direction / area;
+strain = the drive's displacement (mean over the loaded group) / gauge_length;
+both positive in the sense the specimen is driven (compression too). A driven
+group moves as one along the drive: a rigid platen under displacement control.
+The module mask comes from ldem.shapes (geometry); everything the run
+computes is in C++ (ldem._core.Simulation).
+"""
+from __future__ import annotations
+
+import time
+import tomllib
+from typing import Optional
+
+import numpy as np
+
+from . import _core
+from .cube import PARAMETERS, CubeResult, curve_row
+from .shapes import AXES, SpecimenError, Where, check_keys, module_mask, number, point
+
+_PARAMS = {p["name"]: p for p in PARAMETERS}
+# Cube-only parameters: a specimen says the same with its groups.
+_CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
+_SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
+_GROUP_KEYS = {"face", "plane", "box", "point", "union", "fix", "drive", "linear"}
+_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes"}
+
+
+class Nodes:
+    def __init__(self, lattice):  # the present nodes (mass > 0), their coordinates, the box
+        self.x = np.column_stack([lattice.x0, lattice.y0, lattice.z0])
+        self.present = np.asarray(lattice.mass) > 0
+        self.lo, self.hi = self.x.min(axis=0), self.x.max(axis=0)
+        self.tol = 1e-6 * lattice.L0
+        self.L0 = lattice.L0
+
+
+def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
+    """The node ids a [groups.NAME] table selects."""
+    key = f"groups.{name}"
+    if "union" in spec:
+        ids = []
+        for other in spec["union"]:
+            if other not in groups:
+                raise where(f"{key}.union", f"no group '{other}' defined before this one")
+            ids.append(groups[other])
+        return np.unique(np.concatenate(ids))
+    sel = nodes.present.copy()
+    chosen = False
+    if "face" in spec:
+        face = spec["face"]
+        if not (isinstance(face, str) and len(face) == 2 and face[0] in AXES and face[1] in "+-"):
+            raise where(f"{key}.face", f"must be one of x-, x+, y-, y+, z-, z+ (got {face!r})")
+        a = AXES[face[0]]
+        at = nodes.lo[a] if face[1] == "-" else nodes.hi[a]
+        sel &= np.abs(nodes.x[:, a] - at) <= nodes.tol
+        chosen = True
+    if "plane" in spec:
+        plane = spec["plane"]
+        if not (isinstance(plane, dict) and len(plane) == 1 and next(iter(plane)) in AXES):
+            raise where(f"{key}.plane", f"must be one coordinate, e.g. {{x = 0.1}} (got {plane!r})")
+        (axis, at), = plane.items()
+        sel &= np.abs(nodes.x[:, AXES[axis]] - number(at, where, f"{key}.plane", positive=False)) <= nodes.tol
+        chosen = True
+    if "box" in spec:
+        box = spec["box"]
+        if not (isinstance(box, dict) and set(box) == {"min", "max"}):
+            raise where(f"{key}.box", "must be {min = [x, y, z], max = [x, y, z]}")
+        lo, hi = point(box["min"], where, f"{key}.box"), point(box["max"], where, f"{key}.box")
+        sel &= np.all((nodes.x >= lo - nodes.tol) & (nodes.x <= hi + nodes.tol), axis=1)
+        chosen = True
+    if "point" in spec:
+        p = point(spec["point"], where, f"{key}.point")
+        d = np.where(sel, np.linalg.norm(nodes.x - p, axis=1), np.inf)
+        k = int(np.argmin(d))
+        if not d[k] <= nodes.L0:
+            raise where(f"{key}.point", f"no node of the specimen within L0 of {list(p)}")
+        sel = np.zeros_like(sel)
+        sel[k] = True
+        chosen = True
+    if not chosen:
+        raise where(key, "needs a selector: face, plane, box, point or union")
+    ids = np.flatnonzero(sel)
+    if len(ids) == 0:
+        raise where(key, "selects no node of the specimen")
+    return ids
+
+
+def _directions(value, where: Where, key: str) -> list:
+    if not (isinstance(value, list) and all(v in AXES for v in value)):
+        raise where(key, f"must be a list of directions among x, y, z (got {value!r})")
+    return [AXES[v] for v in value]
+
+
+class Build:
+    """What a description makes: the lattice, groups, prescribed DOFs, measures, parameters."""
+
+    def __init__(self, data: dict, where: Where, overrides: Optional[dict] = None):
+        check_keys(data, _SECTIONS, where, "")
+        for s in ("shape", "groups", "measure"):
+            if not isinstance(data.get(s), dict):
+                raise where(s, "missing (every specimen needs [shape], [groups.NAME] and [measure])")
+        self.title = str(data.get("title", "specimen"))
+        self.params = _parameters(data, where, overrides or {})
+        self.L0, self.n, self.mask = module_mask(data["shape"], where)
+        self.params["L0"] = self.L0
+        self.params["size"] = self.L0 * self.n[0]
+        p = self.cpp_params()
+        self.lattice = _core.build_lattice(*self.n, self.L0, p.material,
+                                           np.ascontiguousarray(self.mask.transpose(2, 1, 0)).ravel().astype(np.uint8))
+        nodes = Nodes(self.lattice)
+        self.groups, owner = {}, {}
+        node, dim, weight = [], [], []
+        for name, spec in data["groups"].items():
+            key = f"groups.{name}"
+            if not isinstance(spec, dict):
+                raise where(key, "must be a table")
+            check_keys(spec, _GROUP_KEYS, where, key + ".")
+            ids = select(nodes, name, spec, self.groups, where)
+            self.groups[name] = ids
+            actions = [(d, 0.0) for d in _directions(spec.get("fix", []), where, f"{key}.fix")]
+            drive = spec.get("drive", {})
+            if not isinstance(drive, dict) or any(a not in AXES for a in drive):
+                raise where(f"{key}.drive", f"must be a table of weights by direction, e.g. {{z = -1.0}} (got {drive!r})")
+            actions += [(AXES[a], number(w, where, f"{key}.drive.{a}", positive=False)) for a, w in drive.items()]
+            scale = np.ones(len(ids))
+            if "linear" in spec:
+                a = AXES.get(spec["linear"])
+                if a is None or not drive:
+                    raise where(f"{key}.linear", "must be x, y or z, on a group with a drive")
+                c = nodes.x[ids, a]
+                span = c.max() - c.min()
+                if not span > 0:
+                    raise where(f"{key}.linear", "the group has no extent along that direction")
+                scale = (c - c.min()) / span
+            for d, w in actions:
+                for i, n_ in enumerate(ids):
+                    if (n_, d) in owner:
+                        raise where(key, f"node at {list(nodes.x[n_])} direction {'xyz'[d]} is also prescribed by "
+                                         f"group '{owner[n_, d]}'")
+                    owner[n_, d] = name
+                    node.append(n_), dim.append(d), weight.append(w * scale[i] if w else 0.0)
+        self.prescribed = (np.array(node, np.int32), np.array(dim, np.uint8), np.array(weight))
+        self.measures = self._measures(data["measure"], nodes, where)
+
+    def _measures(self, m: dict, nodes: Nodes, where: Where) -> dict:
+        check_keys(m, _MEASURE_KEYS, where, "measure.")
+        out = {}
+        for k in ("support", "loaded"):
+            if m.get(k) not in self.groups:
+                raise where(f"measure.{k}", f"must name a group (got {m.get(k)!r}; groups: {', '.join(self.groups)})")
+            out[k] = m[k]
+        node, dim, weight = self.prescribed
+        loaded = np.isin(node, self.groups[out["loaded"]])
+        driven = sorted({int(d) for d, w in zip(dim[loaded], weight[loaded]) if w != 0})
+        if len(driven) != 1:
+            raise where("measure.loaded", f"group '{out['loaded']}' must be driven along one direction "
+                                          f"(it is along {['xyz'[d] for d in driven] or 'none'})")
+        out["dim"] = driven[0]
+        along = loaded & (dim == driven[0])
+        out["mean_drive_weight"] = float(weight[along].sum() / len(self.groups[out["loaded"]]))
+        out["area"] = number(m.get("area"), where, "measure.area")
+        out["gauge_length"] = number(m.get("gauge_length"), where, "measure.gauge_length")
+        probes = m.get("probes", {})
+        if not isinstance(probes, dict):
+            raise where("measure.probes", "must be a table of probes by name")
+        out["probes"] = []
+        for name, q in probes.items():
+            key = f"measure.probes.{name}"
+            if not isinstance(q, dict):
+                raise where(key, "must be {a = [x, y, z], b = [x, y, z], direction = 'x'} (a: optional)")
+            check_keys(q, {"a", "b", "direction"}, where, key + ".")
+            if q.get("direction") not in AXES:
+                raise where(f"{key}.direction", f"must be x, y or z (got {q.get('direction')!r})")
+            a = select(nodes, name, {"point": q["a"]}, {}, where) if "a" in q else [-1]
+            if "b" not in q:
+                raise where(f"{key}.b", "missing: the point whose displacement is read")
+            b = select(nodes, name, {"point": q["b"]}, {}, where)
+            out["probes"].append((name, int(a[0]), int(b[0]), AXES[q["direction"]]))
+        return out
+
+    def cpp_params(self):
+        p = _core.CubeTestParams()
+        for k, v in self.params.items():
+            p[k] = v
+        return p
+
+
+def _parameters(data: dict, where: Where, overrides: dict) -> dict:
+    """Every CubeTest parameter of the material, loading and run groups: the
+    file's values over the defaults, then the overrides (--set)."""
+    out = {p["name"]: p["default"] for p in PARAMETERS}
+    given = [(section, k, v) for section in ("material", "loading", "run")
+             for k, v in (data.get(section) or {}).items()]
+    given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v) for k, v in overrides.items()]
+    for section, k, v in given:
+        key = f"{section}.{k}"
+        if k not in _PARAMS or k in _CUBE_ONLY or _PARAMS[k]["group"] != section:
+            raise where(key, "not a parameter of this section" if k in _PARAMS and k not in _CUBE_ONLY else
+                        ("a cube-test parameter: a specimen says it with its groups" if k in _CUBE_ONLY
+                         else "unknown parameter (see ldem cube --help)"))
+        kind = _PARAMS[k]["kind"]
+        ok = isinstance(v, str) if kind == "choice" else (isinstance(v, (int, float)) and not isinstance(v, bool))
+        if not ok or (kind == "int" and not isinstance(v, int)):
+            raise where(key, f"must be {'one of ' + ', '.join(_PARAMS[k]['choices']) if kind == 'choice' else kind} "
+                             f"(got {v!r})")
+        out[k] = float(v) if kind == "float" else v
+    p = _core.CubeTestParams()
+    for k, v in out.items():
+        p[k] = v
+    try:
+        p.material.validate(), p.loading.validate(), p.run.validate()
+    except ValueError as e:
+        name = str(e).split()[0]
+        raise where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(e)) from None
+    return out
+
+
+class SpecimenTest:
+    """A specimen and its run parameters, from a description (a dict shaped as
+    the file) or a file. Runs like ldem.CubeTest: run() returns the data,
+    ldem.run_cube(test, out=...) writes curve.csv, summary.json and figures."""
+
+    def __init__(self, description: dict, path: str = "", text: str = "", overrides: Optional[dict] = None):
+        self.description, self.path = description, path
+        self.build = Build(description, Where(text, path), overrides)
+        self.overrides = dict(overrides or {})
+        for k in ("final_strain", "energy_tolerance", "seed", "stop_at"):
+            setattr(self, k, self.build.params[k])
+
+    @classmethod
+    def from_file(cls, path: str, overrides: Optional[dict] = None) -> "SpecimenTest":
+        try:
+            with open(path, "rb") as f:
+                text = f.read().decode()
+        except OSError as e:
+            raise SpecimenError(f"{path}: {e.strerror or e}") from None
+        except UnicodeDecodeError:
+            raise SpecimenError(f"{path}: not a text file") from None
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as e:
+            raise SpecimenError(f"{path}: not valid TOML: {e}") from None
+        return cls(data, path, text, overrides)
+
+    def describe(self) -> str:
+        return f"{self.build.title}, seed {self.seed}"
+
+    def parameters(self) -> dict:
+        """What reproduces the run: the description and the parameters it gives."""
+        return {"description": self.description, "parameters": self.build.params}
+
+    def simulation(self):
+        b = self.build
+        p = b.cpp_params()
+        return _core.Simulation(b.lattice, {k: v.astype(np.int32) for k, v in b.groups.items()}, *b.prescribed,
+                                b.measures, p.material, p.loading, p.run)
+
+    def run(self, observers=(), simulation=None, previous_rows=()) -> CubeResult:
+        """The run to its stop rule (separation of the support and loaded
+        groups, load loss with run.stop_at = "load_loss", or run.final_strain)."""
+        t0 = time.perf_counter()
+        sim = simulation if simulation is not None else self.simulation()
+        if sim.steps > 0 and not sim.resumable:
+            raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one")
+        rows = list(previous_rows)
+        names = [q[0] for q in self.build.measures["probes"]]
+
+        def observe(p):
+            row = curve_row(p)
+            row.update({f"{n}_m": v for n, v in zip(names, p.probes)})
+            rows.append(row)
+            for o in observers:
+                o(row)
+            return True
+
+        try:
+            summary = sim.run(observe)
+        except BaseException as e:
+            e.ldem_result = CubeResult(self, sim, rows, None, time.perf_counter() - t0, e)
+            raise
+        return CubeResult(self, sim, rows, summary, time.perf_counter() - t0)

@@ -1,0 +1,192 @@
+"""Specimens beyond the cube (issue 13): shapes on the lattice, groups and their
+loads, measures and probes, `ldem run FILE.toml` and the example gallery."""
+import glob
+import json
+import os
+import tomllib
+
+import numpy as np
+import pytest
+
+import ldem
+from ldem import _core
+from ldem.shapes import module_mask
+from ldem.specimen import SpecimenError, SpecimenTest
+
+from conftest import ROOT
+
+EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml")))
+FAST = {"strain_rate": 0.1, "stop_at": "load_loss", "threads": 1}
+
+
+def example(name: str) -> dict:
+    with open(os.path.join(ROOT, "examples", name + ".toml"), "rb") as f:
+        return tomllib.load(f)
+
+
+@pytest.mark.parametrize("load", ["uniform", "triangular"])
+def test_the_cube_files_are_ldem_cube(load):
+    """examples/cube_*.toml is the study's cube: the same curve as ldem.CubeTest."""
+    spec = SpecimenTest.from_file(os.path.join(ROOT, "examples", f"cube_{load}.toml"), FAST).run()
+    cube = ldem.CubeTest(size=0.12, load=load, **FAST).run()
+    assert spec.summary["n_bars"] == cube.summary["n_bars"] and spec.summary["steps"] == cube.summary["steps"]
+    np.testing.assert_array_equal(spec.curve["stress_MPa"], cube.curve["stress_MPa"])
+    np.testing.assert_allclose(spec.curve["mean_strain"], cube.curve["mean_strain"], rtol=1e-13)
+    # The prescribed DOFs come in another order: the external work is summed in another order.
+    np.testing.assert_allclose(spec.curve["external_work_J"], cube.curve["external_work_J"], rtol=1e-12, atol=1e-15)
+    assert spec.summary["peak_stress_MPa"] == cube.summary["peak_stress_MPa"]
+    assert spec.summary["load_loss"]["step"] == cube.summary["load_loss"]["step"]
+
+
+def _bars(lattice):
+    t = lattice.bar_table()
+    x = np.column_stack([lattice.x0, lattice.y0, lattice.z0])
+    return {k: t[k] for k in ("n1", "n2", "EA", "Af", "share")}, x
+
+
+def test_a_full_mask_file_and_a_notch_of_depth_0_are_the_box(tmp_path):
+    np.save(tmp_path / "m.npy", np.ones((3, 2, 4), bool))
+    box = module_mask({"kind": "box", "L0": 0.02, "size": [0.06, 0.04, 0.08]})
+    notch0 = module_mask({"kind": "box", "L0": 0.02, "size": [0.06, 0.04, 0.08], "notch": {"depth": 0.0}})
+    from ldem.shapes import Where
+    masked = module_mask({"kind": "mask", "L0": 0.02, "size": [0.06, 0.04, 0.08], "file": "m.npy"},
+                         Where("", str(tmp_path / "s.toml")))
+    for other in (notch0, masked):
+        assert other[:2] == box[:2] and np.array_equal(other[2], box[2]) and box[2].all()
+    m = _core.Material()
+    full = _bars(_core.build_cubic_lattice(3, 2, 4, 0.02, m))
+    clipped = _bars(_core.build_lattice(3, 2, 4, 0.02, m, box[2].transpose(2, 1, 0).ravel().astype(np.uint8)))
+    for k in full[0]:
+        np.testing.assert_array_equal(full[0][k], clipped[0][k])
+
+
+def test_shapes_cut_what_they_say():
+    L0 = 0.01
+    _, n, notched = module_mask({"kind": "box", "L0": L0, "size": [0.35, 0.05, 0.10],
+                                 "notch": {"depth": 0.05, "width": 0.01}})
+    assert n == (35, 5, 10) and (~notched).sum() == 5 * 5 and not notched[17, :, :5].any() and notched[17, :, 5:].all()
+    _, n, cyl = module_mask({"kind": "cylinder", "L0": L0, "diameter": 0.1, "length": 0.02, "axis": "y"})
+    assert n == (10, 2, 10) and np.array_equal(cyl[:, 0], cyl[:, 1])
+    # The discrete disc's area is within 3 % of pi D^2 / 4.
+    assert cyl[:, 0].sum() * L0 ** 2 == pytest.approx(np.pi * 0.1 ** 2 / 4, rel=0.03)
+    _, n, bone = module_mask({"kind": "dogbone", "L0": L0, "size": [0.1, 0.02, 0.15], "neck": 0.06,
+                              "radius": 0.0725})
+    width = bone[:, 0, :].sum(axis=0) * L0
+    assert width[0] == width[-1] == pytest.approx(0.1) and width.min() == pytest.approx(0.06)
+    assert np.array_equal(width, width[::-1]) and width[n[2] // 2] == width.min()  # narrowest at mid-height
+
+
+def _column(shape: dict) -> dict:
+    """A column 0.12 m high on a roller base (z held, pinned at two points)
+    squeezed by a platen driven down, free laterally: uniaxial compression,
+    stopped below eps_p (no damage)."""
+    return {
+        "title": "column in compression", "shape": shape,
+        "groups": {"base": {"face": "z-", "fix": ["z"]},
+                   "pin": {"point": [0.06, 0.06, 0.0], "fix": ["x", "y"]},
+                   "guide": {"point": [0.10, 0.06, 0.0], "fix": ["y"]},
+                   "platen": {"face": "z+", "drive": {"z": -1.0}}},
+        "measure": {"support": "base", "loaded": "platen", "area": 1.0, "gauge_length": 0.12},
+        "run": {"final_strain": 4e-5, "threads": 1}}
+
+
+def _modulus(test) -> float:
+    """E_app / E: the slope of the second half of the curve (past the smooth
+    start), the force over the column's own section (its present modules)."""
+    result = test.run()
+    assert result.curve["damaged_bars"][-1] == 0
+    section = test.build.mask[:, :, 0].sum() * test.build.L0 ** 2
+    e, s = result.curve["mean_strain"], result.curve["stress_MPa"] * 1e6 / section  # area 1: the force
+    k = len(e) // 2
+    return np.polyfit(e[k:], s[k:], 1)[0] / _core.Material().E, result
+
+
+def test_a_clipped_cylinder_has_the_modulus_of_the_box():
+    """A 6-module box has E_app = 0.86998 E (the static solve of test_elastic.cpp:
+    the lattice's surface layer is softer); the cylinder cut from it (32 of 36
+    modules a layer) the same within 1 %: clipping keeps the material's stiffness.
+    Measured: box 0.87000, cylinder 0.86813 (-0.2 %)."""
+    box, _ = _modulus(SpecimenTest(_column({"kind": "box", "L0": 0.02, "size": [0.12, 0.12, 0.12]})))
+    cyl, result = _modulus(SpecimenTest(_column({"kind": "cylinder", "L0": 0.02, "diameter": 0.12,
+                                                 "length": 0.12, "axis": "z"})))
+    assert box == pytest.approx(0.8699782209635861, rel=2e-3)
+    assert cyl == pytest.approx(box, rel=0.01)
+    # The base is a roller: free along its plane (it widens), held across it;
+    # the platen moves as one and widens too.
+    sim, u = result.sim, result.sim.displacement
+    base, platen = sim.group("base"), sim.group("platen")
+    strain = result.curve["mean_strain"][-1]
+    assert np.all(u[base, 2] == 0) and np.abs(u[base, :2]).max() > 0.05 * strain * 0.06
+    assert np.all(u[platen, 2] == u[platen[0], 2]) and u[platen[0], 2] == pytest.approx(-strain * 0.12, rel=1e-12)
+    assert np.abs(u[platen, :2]).max() > 0.05 * strain * 0.06
+
+
+def test_the_beam_measures_a_crack_mouth_opening():
+    test = SpecimenTest.from_file(os.path.join(ROOT, "examples", "beam_3pb.toml"),
+                                  {"threads": 1, "final_strain": 1.5e-3})
+    result = test.run()
+    cmod, strain = result.curve["cmod_m"], result.curve["mean_strain"]
+    peak = result.summary["strain_at_peak"]
+    assert 0 < peak < 1.5e-3 and result.summary["peak_stress_MPa"] > 0
+    # Positive (the notch opens), and it grows faster than the deflection once the crack runs.
+    assert cmod[-1] > 0 and cmod[-1] == cmod.max()
+    assert cmod[-1] / strain[-1] > 1.5 * np.interp(peak, strain, cmod) / peak  # measured 1.9x
+
+
+def _file(tmp_path, text, base="cube_uniform"):
+    """examples/cube_uniform.toml with its text changed."""
+    src = open(os.path.join(ROOT, "examples", base + ".toml")).read()
+    path = tmp_path / "bad.toml"
+    path.write_text(text(src))
+    return str(path)
+
+
+@pytest.mark.parametrize("change, key", [
+    (lambda s: "colour = 1\n" + s, "1: colour: unknown key"),
+    (lambda s: s.replace('kind = "box"', 'kind = "sphere"'), "shape.kind: must be one of"),
+    (lambda s: s.replace("size = [0.12, 0.12, 0.12]", "size = [0.12, 0.12, 0.13]"), "shape.size: 0.13 m is not a multiple"),
+    (lambda s: s.replace("L0 = 0.02", "L0 = 0.02\nholes = 2"), "shape.holes: unknown key"),
+    (lambda s: s.replace('face = "z+"', 'face = "top"'), "groups.top.face: must be one of"),
+    (lambda s: s.replace('drive = {z = 1.0}', 'drive = {w = 1.0}'), "groups.top.drive: must be a table"),
+    (lambda s: s.replace("[measure]", '[groups.side]\nplane = {x = 0.0}\nfix = ["z"]\n\n[measure]'),
+     "groups.side: node at [0.0, 0.0, 0.0] direction z is also prescribed by group 'bottom'"),
+    (lambda s: s.replace('loaded = "top"', 'loaded = "bottom"'), "measure.loaded: group 'bottom' must be driven"),
+    (lambda s: s.replace('support = "bottom"', 'support = "base"'), "measure.support: must name a group"),
+    (lambda s: s + "\n[material]\nnu = 0.7\n", "material.nu: nu must be in"),
+    (lambda s: s + "\n[loading]\nload = 'triangular'\n", "loading.load: a cube-test parameter"),
+    (lambda s: s + "\n[run]\nseed = 'one'\n", "run.seed: must be int"),
+    (lambda s: s.replace("area = 0.0144", "area = -1"), "measure.area: must be positive"),
+    (lambda s: s.replace("[measure]", "[measure\n"), "not valid TOML"),
+])
+def test_a_bad_file_is_one_line_naming_the_key_and_exit_2(cli, tmp_path, change, key):
+    path = _file(tmp_path, change)
+    r = cli("run", path, "--out", str(tmp_path / "out"), "--no-progress")
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and key in lines[0] and lines[0].startswith(f"ldem run: error: {path}"), r.stderr
+    assert not os.path.exists(tmp_path / "out" / "summary.json")
+
+
+def test_the_line_named_is_the_key_s_line(tmp_path):
+    path = _file(tmp_path, lambda s: s.replace('face = "z+"', 'face = "top"'))
+    with pytest.raises(SpecimenError) as e:
+        SpecimenTest.from_file(path)
+    line = int(str(e.value).split(":")[1])
+    assert 'face = "top"' in open(path).read().splitlines()[line - 1]
+
+
+def test_a_missing_file_is_one_line(cli, tmp_path):
+    r = cli("run", str(tmp_path / "none.toml"))
+    assert r.returncode == 2 and "none.toml: No such file" in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("path", EXAMPLES, ids=lambda p: os.path.basename(p))
+def test_each_example_runs(cli, tmp_path, path):
+    """Every gallery file runs (a short stretch of it: the suite's minutes)."""
+    out = tmp_path / "out"
+    r = cli("run", path, "--out", str(out), "--no-progress", "--set", "final_strain=1e-4", "--set", "threads=1")
+    assert r.returncode == 0, r.stderr
+    s = json.load(open(out / "summary.json"))
+    assert s["status"] == "done" and s["peak_stress_MPa"] > 0 and s["energy_balance_error"] < 0.01
+    assert s["parameters"]["description"]["title"] in open(path).read()
+    assert os.path.getsize(out / "cracks.png") > 0 and os.path.getsize(out / "bars.pvd") > 0
