@@ -54,6 +54,11 @@ def check_keys(table: dict, allowed: set, where: Where, prefix: str) -> None:
             raise where(f"{prefix}{k}", f"unknown key (expected one of {', '.join(sorted(allowed))})")
 
 
+def named(value, options) -> bool:
+    """value is one of the names in options (a file may give any TOML value)."""
+    return isinstance(value, str) and value in options
+
+
 def number(value, where: Where, key: str, positive: bool = True) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise where(key, f"must be a number (got {value!r})")
@@ -81,14 +86,14 @@ def module_mask(shape: dict, where: Optional[Where] = None):
     """(L0, (nx, ny, nz), mask[nx, ny, nz] bool) of a [shape] table."""
     where = where or Where()
     kind = shape.get("kind")
-    if kind not in _SHAPE_KEYS:
+    if not named(kind, _SHAPE_KEYS):
         raise where("shape.kind", f"must be one of {', '.join(_SHAPE_KEYS)} (got {kind!r})")
     check_keys(shape, _SHAPE_KEYS[kind] | {"kind", "L0"}, where, "shape.")
     L0 = number(shape.get("L0"), where, "shape.L0")
     if kind == "cylinder":
         d = number(shape.get("diameter"), where, "shape.diameter")
         length = number(shape.get("length"), where, "shape.length")
-        axis = AXES.get(shape.get("axis", "z"))
+        axis = AXES.get(shape["axis"]) if named(shape.get("axis", "z"), AXES) else None
         if axis is None:
             raise where("shape.axis", f"must be x, y or z (got {shape.get('axis')!r})")
         size = [d, d, d]

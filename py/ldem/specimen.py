@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _core
 from .cube import PARAMETERS, CubeResult, curve_row
-from .shapes import AXES, SpecimenError, Where, check_keys, module_mask, number, point
+from .shapes import AXES, SpecimenError, Where, check_keys, module_mask, named, number, point
 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
 # Cube-only parameters: a specimen says the same with its groups.
@@ -56,9 +56,11 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
     """The node ids a [groups.NAME] table selects."""
     key = f"groups.{name}"
     if "union" in spec:
+        if not (isinstance(spec["union"], list) and spec["union"]):
+            raise where(f"{key}.union", f"must be a list of group names (got {spec['union']!r})")
         ids = []
         for other in spec["union"]:
-            if other not in groups:
+            if not named(other, groups):
                 raise where(f"{key}.union", f"no group '{other}' defined before this one")
             ids.append(groups[other])
         return np.unique(np.concatenate(ids))
@@ -104,7 +106,7 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
 
 
 def _directions(value, where: Where, key: str) -> list:
-    if not (isinstance(value, list) and all(v in AXES for v in value)):
+    if not (isinstance(value, list) and all(named(v, AXES) for v in value)):
         raise where(key, f"must be a list of directions among x, y, z (got {value!r})")
     return [AXES[v] for v in value]
 
@@ -142,7 +144,7 @@ class Build:
             actions += [(AXES[a], number(w, where, f"{key}.drive.{a}", positive=False)) for a, w in drive.items()]
             scale = np.ones(len(ids))
             if "linear" in spec:
-                a = AXES.get(spec["linear"])
+                a = AXES[spec["linear"]] if named(spec["linear"], AXES) else None
                 if a is None or not drive:
                     raise where(f"{key}.linear", "must be x, y or z, on a group with a drive")
                 c = nodes.x[ids, a]
@@ -164,7 +166,7 @@ class Build:
         check_keys(m, _MEASURE_KEYS, where, "measure.")
         out = {}
         for k in ("support", "loaded"):
-            if m.get(k) not in self.groups:
+            if not named(m.get(k), self.groups):
                 raise where(f"measure.{k}", f"must name a group (got {m.get(k)!r}; groups: {', '.join(self.groups)})")
             out[k] = m[k]
         node, dim, weight = self.prescribed
@@ -187,7 +189,7 @@ class Build:
             if not isinstance(q, dict):
                 raise where(key, "must be {a = [x, y, z], b = [x, y, z], direction = 'x'} (a: optional)")
             check_keys(q, {"a", "b", "direction"}, where, key + ".")
-            if q.get("direction") not in AXES:
+            if not named(q.get("direction"), AXES):
                 raise where(f"{key}.direction", f"must be x, y or z (got {q.get('direction')!r})")
             a = select(nodes, name, {"point": q["a"]}, {}, where) if "a" in q else [-1]
             if "b" not in q:

@@ -44,3 +44,78 @@ def test_random_flags_never_traceback(k, tmp_path, capsys):
         s = json.loads(summary.read_text())
         flagged = code == 1 and s.get("energy_error") is True  # done, but its energy balance is off: exit 1
         assert (s["status"] == "done") == (code == 0 or flagged), (args, code, s["status"], err)
+
+
+# A small specimen file (a 2 x 2 x 2 cube pulled fast) and the ways to break it.
+SPECIMEN = """title = "fuzz"
+[shape]
+kind = "box"
+L0 = 0.02
+size = [0.04, 0.04, 0.04]
+[groups.bottom]
+face = "z-"
+fix = ["x", "y", "z"]
+[groups.top]
+face = "z+"
+drive = {z = 1.0}
+fix = ["x", "y"]
+[measure]
+support = "bottom"
+loaded = "top"
+area = 0.0016
+gauge_length = 0.04
+probes = {tip = {b = [0.04, 0.04, 0.04], direction = "z"}}
+[loading]
+strain_rate = 0.5
+[run]
+stop_at = "load_loss"
+final_strain = 3e-4
+"""
+TOML_VALUES = ["0", "-1", "1e300", "nan", "inf", '"x"', '"z-"', '"cylinder"', "[]", "[1, 2, 3]", "{}", "{z = 1.0}",
+               "true", '"dogbone"', "0.02", '["x", "q"]', "[0.0, 0.0, 0.0]", '"bottom"', "{a = [0, 0, 0]}", '"']
+TOML_KEYS = ["kind", "L0", "size", "notch", "face", "plane", "box", "point", "union", "fix", "drive", "linear",
+             "support", "loaded", "area", "gauge_length", "probes", "seed", "zeta", "nu", "strain_rate", "bogus",
+             "diameter", "axis", "neck", "radius", "file", "title"]
+
+
+def _mutate(rng) -> str:
+    lines = SPECIMEN.splitlines()
+    for _ in range(rng.randint(1, 3)):
+        if not lines:
+            break
+        i = rng.randrange(len(lines))
+        op = rng.randrange(5)
+        if op == 0:  # a value replaced
+            if "=" in lines[i]:
+                lines[i] = lines[i].split("=")[0] + "= " + rng.choice(TOML_VALUES)
+        elif op == 1:  # a line dropped
+            del lines[i]
+        elif op == 2:  # a key added
+            lines.insert(i + 1, f"{rng.choice(TOML_KEYS)} = {rng.choice(TOML_VALUES)}")
+        elif op == 3:  # a line doubled (a key twice, a table twice)
+            lines.insert(i, lines[i])
+        else:  # the file cut
+            lines = lines[:i]
+    return "\n".join(lines) + "\n"
+
+
+@pytest.mark.parametrize("k", range(60))
+def test_random_specimen_files_never_traceback(k, tmp_path, capsys):
+    rng = random.Random(5000 + k)
+    path = tmp_path / "s.toml"
+    path.write_text(_mutate(rng))
+    args = ["run", str(path), "--out", str(tmp_path / "o"), "--no-progress", "--no-plots", "--set", "threads=1"]
+    try:
+        code = cli.main(args)
+    except SystemExit as e:
+        code = e.code
+    out, err = capsys.readouterr()
+    text = path.read_text()
+    assert "Traceback" not in err and "Traceback" not in out, (text, err)
+    assert code in (0, 1, 2), (text, code, err)
+    if code == 2:
+        assert len(err.strip().splitlines()) == 1 and str(path) in err, (text, err)
+    summary = tmp_path / "o" / "summary.json"
+    if summary.exists():
+        s = json.loads(summary.read_text())
+        assert (s["status"] == "done") == (code == 0 or (code == 1 and s.get("energy_error") is True)), (text, s)
