@@ -33,7 +33,7 @@ void validate(const Specimen& s) {
     auto fail = [](const std::string& what) { throw std::invalid_argument("specimen: " + what); };
     auto checkNode = [&](std::int64_t id, const std::string& where) {
         if (id < 0 || id >= n) fail(where + " names node " + std::to_string(id) + " (the lattice has " +
-                                    std::to_string(n) + ")");
+                                    std::to_string(n) + " nodes)");
     };
     for (const auto& [name, nodes] : s.groups) {
         if (nodes.empty()) fail("group '" + name + "' has no node");
@@ -55,11 +55,12 @@ void validate(const Specimen& s) {
     }
 }
 
-Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p) {
+Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
+                          const std::vector<std::uint8_t>& moduleMask) {
     m.validate();
     p.validate();
     Specimen s;
-    s.lattice = buildCubicLattice(nx, ny, nz, L0, m);
+    s.lattice = buildLattice(nx, ny, nz, L0, m, moduleMask);
     const Lattice& lat = s.lattice;
     Prescribed& c = s.prescribed;
     c.mask.assign(lat.numNodes(), 0);
@@ -70,6 +71,7 @@ Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, 
     for (int j = 0; j <= lat.ny; ++j)
         for (int i = 0; i <= lat.nx; ++i) {
             const auto bottom = lat.cornerId(i, j, 0), top = lat.cornerId(i, j, lat.nz);
+            if (lat.mass[bottom] == 0 || lat.mass[top] == 0) continue;  // outside a clipped prism's faces
             bottomNodes.push_back(bottom), topNodes.push_back(top);
             // Lower face: vertical DOF fixed; lateral fixed, or on rollers with only
             // the rigid-body motion pinned (x, y at one corner, y at the next).
@@ -88,6 +90,12 @@ Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, 
     Measures& ms = s.measures;
     ms.support = "bottom", ms.loaded = "top", ms.dim = 2;
     ms.area = lat.nx * lat.L0 * lat.ny * lat.L0;
+    if (!moduleMask.empty()) {  // the lower face's own modules
+        int kept = 0;
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) kept += lat.present(i, j, 0);
+        ms.area = kept * L0 * L0;
+    }
     ms.gaugeLength = lat.nz * lat.L0;
     ms.meanDriveWeight = weightSum / topNodes.size();
     return s;

@@ -69,6 +69,11 @@ void validate(const Specimen& s);
 // support: z held; x, y held, or on rollers with only the rigid motion pinned)
 // and "top" (loaded: z driven with weight 1, uniform, or x/width, triangular;
 // x, y free or held).
-Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p);
+// With moduleMask (buildLattice), the prism of those modules pulled the same
+// way: a face is its nodes of some module, the area its modules' (a prism's
+// lower and upper faces must have the same nodes). Rollers need the face's
+// two corners (0, 0) and (nx, 0).
+Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
+                          const std::vector<std::uint8_t>& moduleMask = {});
 
 }  // namespace ldem

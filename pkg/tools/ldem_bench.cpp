@@ -1,9 +1,10 @@
 // ldem-bench: time the whole time step of an N^3 cube (default material,
-// uniform loading) and print one line of JSON. `ldem bench` runs it; it is a
+// uniform loading), or of the cylinder of diameter and height N modules cut
+// from it (--shape cylinder: a clipped lattice), and print one line of JSON. `ldem bench` runs it; it is a
 // separate program so that its peak resident memory is the run's own, with
 // no interpreter around it.
 //
-//   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5]
+//   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5] [--shape box|cylinder]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -38,16 +39,33 @@ long peakResidentBytes() {
 }
 
 [[noreturn]] void usage(const char* msg) {
-    std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R]\n", msg);
+    std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R] [--shape box|cylinder]\n", msg);
     std::exit(2);
+}
+// Modules of an N^3 box whose centres lie within the cylinder of axis z and diameter N.
+std::vector<std::uint8_t> cylinderMask(int n) {
+    std::vector<std::uint8_t> mask(std::size_t(n) * n * n);
+    for (int k = 0; k < n; ++k)
+        for (int j = 0; j < n; ++j)
+            for (int i = 0; i < n; ++i) {
+                const double x = i + 0.5 - 0.5 * n, y = j + 0.5 - 0.5 * n;
+                mask[i + std::size_t(n) * (j + std::size_t(n) * k)] = x * x + y * y <= 0.25 * n * n;
+            }
+    return mask;
 }
 }  // namespace
 
 int main(int argc, char** argv) {
     int modules = 24, steps = 200, threads = 0, repeats = 5;
+    std::string shape = "box";
     for (int a = 1; a < argc; ++a) {
         const std::string key = argv[a];
         if (a + 1 >= argc) usage(("missing value after " + key).c_str());
+        if (key == "--shape") {
+            shape = argv[++a];
+            if (shape != "box" && shape != "cylinder") usage("--shape is box or cylinder");
+            continue;
+        }
         const int value = std::atoi(argv[++a]);
         if (key == "--modules") modules = value;
         else if (key == "--steps") steps = value;
@@ -62,8 +80,10 @@ int main(int argc, char** argv) {
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<ldem::Simulation> built;
     try {
-        built = std::make_unique<ldem::Simulation>(modules, modules, modules, 0.02, ldem::Material{},
-                                                   ldem::LoadingParams{}, run);
+        const std::vector<std::uint8_t> mask = shape == "box" ? std::vector<std::uint8_t>{} : cylinderMask(modules);
+        built = std::make_unique<ldem::Simulation>(
+            ldem::cubeTestSpecimen(modules, modules, modules, 0.02, ldem::Material{}, ldem::LoadingParams{}, mask),
+            ldem::Material{}, ldem::LoadingParams{}, run);
     } catch (const std::invalid_argument& e) {  // e.g. more memory than the machine has: one line
         std::fprintf(stderr, "ldem-bench: error: %s\n", e.what());
         return 2;
@@ -99,10 +119,10 @@ int main(int argc, char** argv) {
     const double bars = double(sim.lattice().numBars());
     const long rss = peakResidentBytes();
     std::printf(
-        "{\"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
+        "{\"shape\": \"%s\", \"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
         "\"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, \"ns_per_bar_integration\": %.4f, "
         "\"separation_check_share\": %.4f, \"setup_s\": %.3f, \"peak_rss_bytes\": %ld, \"bytes_per_bar\": %.2f}\n",
-        modules, (long long)sim.lattice().numBars(), (long long)sim.lattice().numNodes(), steps, repeats,
+        shape.c_str(), modules, (long long)sim.lattice().numBars(), (long long)sim.lattice().numNodes(), steps, repeats,
         ldem::maxThreads(), median(perStep) / bars * 1e9, median(forces) / bars * 1e9,
         median(advance) / bars * 1e9,
         median(separation) / (ldem::Simulation::kSeparationCheckSteps * median(perStep)), setup, rss, rss / bars);

@@ -68,3 +68,72 @@ TEST(Specimen, MeasuresMustNameItsGroups) {
         EXPECT_STREQ(e.what(), "the specimen's measures name no node group 'base'");
     }
 }
+
+TEST(Specimen, AFullMaskIsTheCubeTestAndAClippedPrismStandsOnItsOwnFace) {
+    Material m;
+    LoadingParams lp;
+    lp.strainRate = 0.1;
+    RunParams rp;
+    rp.threads = 1, rp.stopAt = StopAt::LoadLoss, rp.recordEvery = 50;
+    const std::vector<std::uint8_t> ones(3 * 3 * 3, 1);
+    Simulation full(cubeTestSpecimen(3, 3, 3, 0.02, m, lp, ones), m, lp, rp), cube(3, 3, 3, 0.02, m, lp, rp);
+    EXPECT_DOUBLE_EQ(full.measures().area, cube.measures().area);
+    std::vector<CurvePoint> a, b;
+    full.run([&](const CurvePoint& p) { a.push_back(p); return a.size() < 30; });
+    cube.run([&](const CurvePoint& p) { b.push_back(p); return b.size() < 30; });
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) EXPECT_NEAR(a[i].stress, b[i].stress, 1e-12 * std::abs(b[i].stress));
+    // An L-shaped prism (3 of 4 columns of modules kept): its faces are its own
+    // nodes, its area its 3 modules.
+    std::vector<std::uint8_t> L(2 * 2 * 3, 1);
+    for (int k = 0; k < 3; ++k) L[1 + 2 * (1 + 2 * k)] = 0;
+    const Specimen s = cubeTestSpecimen(2, 2, 3, 0.02, m, lp, L);
+    EXPECT_DOUBLE_EQ(s.measures.area, 3 * 0.02 * 0.02);
+    EXPECT_EQ(s.groups.at("bottom").size(), 8u);  // 9 corners of the 2 x 2 face but the one of no module
+    for (auto n : s.groups.at("top")) EXPECT_GT(s.lattice.mass[n], 0);
+}
+
+TEST(Specimen, APushIsMeasuredPositive) {
+    // The 2 x 2 x 4 cube test's prism, its upper face pushed instead of pulled:
+    // stress and strain positive in the sense of the drive (compression).
+    Material m;
+    LoadingParams lp;
+    lp.strainRate = 0.1;
+    RunParams rp;
+    rp.threads = 1, rp.recordEvery = 50;
+    Specimen pushed = cubeTestSpecimen(2, 2, 4, 0.02, m, lp);
+    for (double& w : pushed.prescribed.weight) w = -w;
+    pushed.measures.meanDriveWeight = -pushed.measures.meanDriveWeight;
+    Simulation push(std::move(pushed), m, lp, rp), pull(2, 2, 4, 0.02, m, lp, rp);
+    std::vector<CurvePoint> a, b;
+    push.run([&](const CurvePoint& p) { a.push_back(p); return a.size() < 12; });
+    pull.run([&](const CurvePoint& p) { b.push_back(p); return b.size() < 12; });
+    ASSERT_EQ(a.size(), b.size());
+    EXPECT_GT(a.back().stress, 1e5);
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].meanStrain, b[i].meanStrain);
+        // Below eps_p the lattice is linear: the push is the pull mirrored (up to the geometric nonlinearity).
+        EXPECT_NEAR(a[i].stress, b[i].stress, 2e-3 * std::abs(b.back().stress)) << "record " << i;
+    }
+}
+
+TEST(Specimen, ValidateNamesWhatIsWrong) {
+    auto message = [](auto f) {
+        try {
+            f();
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::string("no error");
+    };
+    EXPECT_EQ(message([] { makePrescribed(4, {1, 1}, {2, 2}, {0.0, 1.0}); }),
+              "specimen: node 1 direction 2 is prescribed twice");
+    EXPECT_NE(message([] { makePrescribed(4, {7}, {0}, {0.0}); }).find("names node 7 direction 0"), std::string::npos);
+    Material m;
+    Specimen s = cubeTestSpecimen(2, 2, 2, 0.02, m, LoadingParams{});
+    s.groups["top"].push_back(999999);
+    EXPECT_EQ(message([&] { validate(s); }), "specimen: group 'top' names node 999999 (the lattice has 35 nodes)");
+    s = cubeTestSpecimen(2, 2, 2, 0.02, m, LoadingParams{});
+    s.measures.probes.push_back({"tip", -1, 35, 2});
+    EXPECT_EQ(message([&] { validate(s); }), "specimen: probe 'tip' names node 35 (the lattice has 35 nodes)");
+}
