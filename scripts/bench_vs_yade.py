@@ -37,7 +37,7 @@ def yade_ns_per_bar_step(n, steps, repeats):
     rp.threads = threads
     t0 = time.time()
     sim = _core.Simulation(n, n, n, 0.02, _core.Material(), _core.LoadingParams(), rp)
-    spec = ly.CubeSpecimen(sim, damping=0.0)
+    spec = ly.SimulationSpecimen(sim, damping=0.0)
     O.run(1, True)
     build_s = time.time() - t0
     O.engines = [e for e in O.engines if type(e).__name__ != "PyRunner"]

@@ -1,6 +1,6 @@
 """Load loss and separation in ldem and in YADE (issue 10): a small cube,
 uniform loading, NO damping (YADE's damping is not ldem's, see ldem.yade), run
-to separation by ldem (Simulation.run) and by YADE with ldem.yade.CubeSpecimen,
+to separation by ldem (Simulation.run) and by YADE with ldem.yade.SimulationSpecimen,
 which applies the same rules to YADE's own state: the load-loss test on the
 same record steps, the drive sped up by loss_speedup from the load loss on, and
 the separation test (_core.nodes_joined over the bars with kappa < eps_r) on
@@ -74,7 +74,7 @@ def main(argv):
 
     t0 = time.time()
     fresh = _core.Simulation(n, n, n, a.L0, _core.Material(), lp, rp)  # the same specimen, unrun
-    spec = ly.CubeSpecimen(fresh, damping=0.0)
+    spec = ly.SimulationSpecimen(fresh, damping=0.0)
     res = spec.run()
     t_yade = time.time() - t0
 

@@ -7,7 +7,7 @@ Use inside YADE (``yade-double -n -x script.py``)::
     from ldem import _core
     lp = _core.LoadingParams(); rp = _core.RunParams(); rp.zeta = 0
     sim = _core.Simulation(6, 6, 6, 0.02, _core.Material(), lp, rp)
-    spec = ldem.yade.CubeSpecimen(sim)         # fills YADE's O
+    spec = ldem.yade.SimulationSpecimen(sim)         # fills YADE's O
     result = spec.run()                          # to separation, as sim.run() would
     # dict: peak_stress, strain_at_peak, load_loss, separation, stop_reason, curve...
 
@@ -108,7 +108,7 @@ so that NewtonIntegrator's v + dt (F + F_d)/m is, in exact arithmetic, the
 spec's central difference v(n+1/2) = [(1 - a) v(n-1/2) + dt F/m] / (1 + a).
 It also keeps the damping work as tests/reference/ldem_ref.py defines it
 (dt D_f m vbar^2 over the free DOFs, vbar = (v(n-1/2) + v(n+1/2))/2) and the
-kinetic energy 1/2 m v(n-1/2)^2. ``CubeSpecimen`` (ldem's own specimen) runs
+kinetic energy 1/2 m v(n-1/2)^2. ``SimulationSpecimen`` (ldem's own specimen) runs
 undamped or with YADE's Cundall ``damping``; ``LatticeSpecimen`` (a specimen
 given as arrays, e.g. from the reference) takes D_f and uses ``ViscousDamping``.
 
@@ -120,14 +120,14 @@ corner (0,0) and y at (nx,0) if bottom_lateral is "free"); upper face z prescrib
 u_z = w U(t) with w = 1 (uniform) or x0/width (triangular), x, y free unless
 top_lateral is "fixed". U(t) is ldem's Drive (smooth 1 - cos start over
 ramp_time, then v0 = strain_rate * height; once the load is lost, loss_speedup
-times faster, with the same smooth start: ``CubeSpecimen.drive``, bit for bit
+times faster, with the same smooth start: ``SimulationSpecimen.drive``, bit for bit
 pkg/ldem/Loading.cpp's Drive::displacement). Each step, before the forces,
 the drive sets the upper nodes to z0 + w U(t_n) and their velocity to
 w (U(t_n+1) - U(t_n))/dt (YADE moves blocked DOFs with their velocity).
 
 Load loss and separation
 ------------------------
-``CubeSpecimen.run`` applies Simulation::run's rules (pkg/ldem/Simulation.cpp)
+``SimulationSpecimen.run`` applies Simulation::run's rules (pkg/ldem/Simulation.cpp)
 to YADE's state: the peak at every step; on ldem's record steps (every
 sim.record_every steps) the load-loss test (_core.LoadLossDetector; from then on
 the drive speeds up) and, once bars have broken and the stress is below half the
@@ -140,11 +140,11 @@ the final strain), and reports both events with the fracture energy dissipated
 by then, sum over the bars of ldem's dissipatedEnergy(kappa).
 
 Modules: ``scene`` (bars as CPM interactions, nodes, engines, the rupture
-guard, ldem's drive reproduced bit for bit), ``cube`` (CubeSpecimen: an ldem
+guard, ldem's drive reproduced bit for bit), ``cube`` (SimulationSpecimen: an ldem
 Simulation rebuilt in YADE and run by Simulation::run's rules), ``lattice``
 (LatticeSpecimen and ViscousDamping: any lattice given as arrays).
 """
-from .cube import CubeSpecimen, cube_constraints  # noqa: F401
+from .cube import SimulationSpecimen, constraints  # noqa: F401
 from .lattice import LatticeSpecimen, ViscousDamping  # noqa: F401
 from .scene import (BROKEN_ONSET, GUARD_MARGIN, SEPARATION_CHECK, CpmBars, RuptureGuard, _register,  # noqa: F401
                     _yade, add_node, bar_material, drive_mul_add, make_engines)

@@ -1,5 +1,6 @@
-"""An ldem Simulation rebuilt in YADE's O (CubeSpecimen) and run to
-separation by Simulation::run's rules (see ldem.yade)."""
+"""An ldem Simulation rebuilt in YADE's O (SimulationSpecimen: the study's
+cube or any specimen of ldem.specimen) and run to separation by
+Simulation::run's rules (see ldem.yade)."""
 import math
 
 import numpy as np
@@ -9,17 +10,18 @@ from .scene import (SEPARATION_CHECK, CpmBars, RuptureGuard, _ramp_integral, _re
                     drive_mul_add, make_engines)
 
 
-def cube_constraints(sim):
+def constraints(sim):
     """ldem's prescribed DOFs (Simulation.prescribed_dofs) in YADE's terms: per
-    node a blockedDOFs string (translations), and the drive weight of each upper node."""
+    node a blockedDOFs string (translations), and the driven DOFs (node,
+    direction, weight): u = weight x U(t)."""
     dofs = sim.prescribed_dofs()
     held = [""] * sim.lattice.n_nodes
-    weight = {}
+    driven = []
     for n, d, w in zip(dofs["node"], dofs["dim"], dofs["weight"]):
         held[int(n)] += "xyz"[int(d)]
-        if d == 2:
-            weight[int(n)] = float(w)
-    return held, np.array([weight[int(n)] for n in sim.group("top")])
+        if w != 0:
+            driven.append((int(n), int(d), float(w)))
+    return held, driven
 
 
 def _event(step, time, mean_strain, fracture):
@@ -28,15 +30,17 @@ def _event(step, time, mean_strain, fracture):
             "fracture_energy_J": float(fracture)}
 
 
-class CubeSpecimen:
-    """The ldem specimen ``sim`` (an ldem._core.Simulation) rebuilt in YADE's O:
-    same nodes, masses, bars, per-bar eps_r (from the same seed, read from
-    sim.eps_r), boundary conditions, drive U(t) (with its speed-up after the load
-    loss), dt and record steps."""
+class SimulationSpecimen:
+    """The ldem specimen ``sim`` (an ldem._core.Simulation: the cube test or any
+    ldem.SpecimenTest's) rebuilt in YADE's O: same nodes, masses, bars, per-bar
+    eps_r (from the same seed, read from sim.eps_r), held and driven DOFs, drive
+    U(t) (with its speed-up after the load loss), measures (the support group's
+    reactions along the drive over the area, positive in the sense of the
+    drive), dt and record steps."""
 
-    def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_cube"):
+    def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_specimen"):
         if sim.steps != 0:
-            raise ValueError("CubeSpecimen needs an ldem Simulation that has not run yet (its initial state)")
+            raise ValueError("SimulationSpecimen needs an ldem Simulation that has not run yet (its initial state)")
         y = _yade()
         O = self.O = y["O"]
         if reset:
@@ -46,10 +50,12 @@ class CubeSpecimen:
         self.height, self.face_area = sim.gauge_length, sim.area
         self.dt = sim.dt
         self.radius = radius_factor * lat.L0
-        held, self.top_weights = cube_constraints(sim)
-        self.mean_top_weight = sum(float(w) for w in self.top_weights) / len(self.top_weights)  # ldem's order
-        self.bottom = [int(n) for n in sim.group("bottom")]
-        self.top = [int(n) for n in sim.group("top")]
+        held, self.driven = constraints(sim)
+        m = sim.measures
+        self.dim, self.sense = int(m["dim"]), (-1.0 if m["mean_drive_weight"] < 0 else 1.0)
+        self.mean_weight = abs(m["mean_drive_weight"])  # ldem's own number
+        self.support = [int(n) for n in sim.group(m["support"])]
+        self.loaded = [int(n) for n in sim.group(m["loaded"])]
         # ldem's Drive: v0, ramp, and the speed-up from the load loss on (never, until then)
         self.v0 = sim.loading.strain_rate * sim.gauge_length
         self.speedup = sim.loading.loss_speedup
@@ -71,14 +77,16 @@ class CubeSpecimen:
         for n in range(lat.n_nodes):
             bid = add_node((x0[n], y0[n], z0[n]), mass[n], self.radius, mat, held[n])
             assert bid == n
-        self.z0_top = z0[self.top]
-        self.z0_top_mean = float(np.mean(self.z0_top))
+        x0 = np.column_stack([x0, y0, z0])
+        self.driven_x0 = [float(x0[n, d]) for n, d, _ in self.driven]
+        self.loaded_x0_mean = float(np.mean(x0[self.loaded, self.dim]))
         table = lat.bar_table()
         self.bars = CpmBars(table["n1"], table["n2"], table["EA"], table["length"], sim.eps_p, sim.eps_r, self.radius)
         self.states = [b.state for b in O.bodies]
-        self.top_states = [self.states[n] for n in self.top]
+        self.driven_states = [self.states[n] for n, _, _ in self.driven]
+        self.loaded_states = [self.states[n] for n in self.loaded]
         self.guard = RuptureGuard(self.bars, self.states)
-        self.curve = []  # (step, time, mean_strain, stress_bottom, stress_top, damaged, broken)
+        self.curve = []  # (step, time, mean_strain, stress_support, stress_loaded, damaged, broken)
         self.peak_stress, self.strain_at_peak = 0.0, 0.0
         self.stop_reason = ""
         self.final_strain, self.callback, self.stop_at = math.inf, None, "separation"
@@ -101,30 +109,31 @@ class CubeSpecimen:
         """Some chain of intact bars (kappa < eps_r) joins the upper and lower
         faces: ldem's own test (_core.nodes_joined), on YADE's bar states."""
         self.separation_checks += 1
-        return _core.nodes_joined(self.sim.lattice, self.guard.intact(), self.top, self.bottom)
+        return _core.nodes_joined(self.sim.lattice, self.guard.intact(), self.loaded, self.support)
 
     # -- engines -------------------------------------------------------------
     def _before_forces(self):
         O = self.O
         t, dt = O.time, O.dt
         U, Unext = self.drive(t), self.drive(t + dt)
-        for s, z0, w in zip(self.top_states, self.z0_top, self.top_weights):
-            p, v = s.pos, s.vel
-            s.pos = type(p)(p[0], p[1], z0 + w * U)
-            s.vel = type(v)(v[0], v[1], w * (Unext - U) / dt)
+        for s, x0, (_, d, w) in zip(self.driven_states, self.driven_x0, self.driven):
+            p, v = list(s.pos), list(s.vel)
+            p[d], v[d] = x0 + w * U, w * (Unext - U) / dt
+            s.pos, s.vel = type(s.pos)(*p), type(s.vel)(*v)
         self.guard()
 
     def _after_forces(self):
         O = self.O
         if not self.bars.finished:
             self.bars.finish_first_step()
-        fz_bottom = sum(O.forces.f(n)[2] for n in self.bottom)
-        fz_top = sum(O.forces.f(n)[2] for n in self.top)
-        disp = sum(s.pos[2] for s in self.top_states) / len(self.top) - self.z0_top_mean
-        strain = disp / self.height
-        stress = fz_bottom / self.face_area
+        d, sense = self.dim, self.sense
+        f_support = sum(O.forces.f(n)[d] for n in self.support)
+        f_loaded = sum(O.forces.f(n)[d] for n in self.loaded)
+        disp = sum(s.pos[d] for s in self.loaded_states) / len(self.loaded) - self.loaded_x0_mean
+        strain = sense * disp / self.height
+        stress = sense * f_support / self.face_area
         damaged, broken = self.guard.counts()
-        self.curve.append((O.iter, O.time, strain, stress, -fz_top / self.face_area, damaged, broken))
+        self.curve.append((O.iter, O.time, strain, stress, -sense * f_loaded / self.face_area, damaged, broken))
         if stress > self.peak_stress:
             self.peak_stress, self.strain_at_peak = stress, strain
         keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
@@ -139,7 +148,7 @@ class CubeSpecimen:
         """Simulation::run's tests at a record step, in its order."""
         O = self.O
         n, t = O.iter, O.time
-        mean_strain = self.drive(t) * self.mean_top_weight / self.height  # ldem's meanStrainAt(t)
+        mean_strain = self.drive(t) * self.mean_weight / self.height  # ldem's meanStrainAt(t)
         if self.load_loss is None and self.split.update(t, stress, self.peak_stress, broken):
             self.load_loss = _event(n, t, mean_strain, self.guard.fracture_energy())
             self.speedup_start = t  # U(t_n) unchanged; from t_n+1 on, faster
@@ -168,7 +177,7 @@ class CubeSpecimen:
         separation (None, or dict step, time_s, mean_strain, fracture_energy_J,
         as in ldem's summary.json), fracture_energy_J (at the end),
         separation_checks, curve (numpy array of step, time, mean_strain,
-        stress_bottom, stress_top, damaged, broken: every step), guard_early,
+        stress_support, stress_loaded, damaged, broken: every step), guard_early,
         lost_bars."""
         if stop_at not in ("separation", "load_loss"):
             raise ValueError(f"unknown stop event '{stop_at}' (expected separation or load_loss)")
@@ -179,7 +188,7 @@ class CubeSpecimen:
         self.split = _core.LoadLossDetector(self.sim.split_window, stop_fraction)
         self.stop_reason = ""
         if max_steps is None:  # time to the final strain + ramp at the initial rate (no speed-up), with margin
-            t_final = final_strain * self.height / (self.v0 * self.mean_top_weight) + 0.5 * self.ramp_time
+            t_final = final_strain * self.height / (self.v0 * self.mean_weight) + 0.5 * self.ramp_time
             max_steps = int(1.2 * t_final / self.dt) + 10
         self.O.run(int(max_steps), True)
         if not self.stop_reason:
