@@ -71,26 +71,33 @@ class _CubeTestMethods:
         computed up to then as its `ldem_result` (status failed/interrupted).
         ldem.run_cube(test, out=...) runs it with the files and pictures.
         """
-        t0 = time.perf_counter()
-        sim = simulation if simulation is not None else self.simulation()
-        if sim.steps > 0 and not sim.resumable:  # the end of that run: a second run would start from there
-            raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
-                             "test.simulation()")
-        rows = list(previous_rows)
+        return run_test(self, observers, simulation, previous_rows)
 
-        def observe(p):
-            row = curve_row(p)
-            rows.append(row)
-            for o in observers:
-                o(row)
-            return True
 
-        try:
-            summary = sim.run(observe)
-        except BaseException as e:  # keep what was computed, then let it propagate
-            e.ldem_result = CubeResult(self, sim, rows, None, time.perf_counter() - t0, e)
-            raise
-        return CubeResult(self, sim, rows, summary, time.perf_counter() - t0)
+def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -> "CubeResult":
+    """test.run (a CubeTest's or an ldem.SpecimenTest's): the C++ loop with the
+    observers called on each curve row (probes: the names of its probe columns)."""
+    t0 = time.perf_counter()
+    sim = simulation if simulation is not None else test.simulation()
+    if sim.steps > 0 and not sim.resumable:  # the end of that run: a second run would start from there
+        raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
+                         "test.simulation()")
+    rows = list(previous_rows)
+
+    def observe(p):
+        row = curve_row(p)
+        row.update({f"{name}_m": value for name, value in zip(probes, p.probes)})
+        rows.append(row)
+        for o in observers:
+            o(row)
+        return True
+
+    try:
+        summary = sim.run(observe)
+    except BaseException as e:  # keep what was computed, then let it propagate
+        e.ldem_result = CubeResult(test, sim, rows, None, time.perf_counter() - t0, e)
+        raise
+    return CubeResult(test, sim, rows, summary, time.perf_counter() - t0)
 
 
 def settings(pairs) -> dict:

@@ -25,14 +25,13 @@ computes is in C++ (ldem._core.Simulation).
 """
 from __future__ import annotations
 
-import time
 import tomllib
 from typing import Optional
 
 import numpy as np
 
 from . import _core
-from .cube import PARAMETERS, CubeResult, curve_row
+from .cube import PARAMETERS, CubeResult, run_test
 from .shapes import AXES, SpecimenError, Where, check_keys, module_mask, named, number, point
 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
@@ -277,25 +276,6 @@ class SpecimenTest:
 
     def run(self, observers=(), simulation=None, previous_rows=()) -> CubeResult:
         """The run to its stop rule (separation of the support and loaded
-        groups, load loss with run.stop_at = "load_loss", or run.final_strain)."""
-        t0 = time.perf_counter()
-        sim = simulation if simulation is not None else self.simulation()
-        if sim.steps > 0 and not sim.resumable:
-            raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one")
-        rows = list(previous_rows)
-        names = [q[0] for q in self.build.measures["probes"]]
-
-        def observe(p):
-            row = curve_row(p)
-            row.update({f"{n}_m": v for n, v in zip(names, p.probes)})
-            rows.append(row)
-            for o in observers:
-                o(row)
-            return True
-
-        try:
-            summary = sim.run(observe)
-        except BaseException as e:
-            e.ldem_result = CubeResult(self, sim, rows, None, time.perf_counter() - t0, e)
-            raise
-        return CubeResult(self, sim, rows, summary, time.perf_counter() - t0)
+        groups, load loss with run.stop_at = "load_loss", or run.final_strain),
+        as ldem.CubeTest.run, with a column NAME_m per probe."""
+        return run_test(self, observers, simulation, previous_rows, [q[0] for q in self.build.measures["probes"]])
