@@ -112,10 +112,13 @@ def state_handles(counts=None) -> list:
 
 
 def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
-    fig, ax = plt.subplots(figsize=(5.6, 6.2))
-    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center", bbox_to_anchor=(0.5, -0.1),
-              ncol=3)
+    # A cube's slice is square: 5.6 x 6.2 in; a beam's is flat, and its figure with it.
+    aspect = np.ptp(seg[:, :, 1]) / max(np.ptp(seg[:, :, 0]), 1e-30) if len(seg) else 1.0
+    fig, ax = plt.subplots(figsize=(5.6, min(6.2, 1.6 + 4.6 * aspect)))
+    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center",
+              bbox_to_anchor=(0.5, -0.1 - 0.25 * max(0.0, 1 - aspect)), ncol=3)
     ax.set_title(title or "central slice", fontsize=9)
+    fig.tight_layout()
     save(fig, path)
 
 

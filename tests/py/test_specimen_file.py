@@ -190,3 +190,14 @@ def test_each_example_runs(cli, tmp_path, path):
     assert s["status"] == "done" and s["peak_stress_MPa"] > 0 and s["energy_balance_error"] < 0.01
     assert s["parameters"]["description"]["title"] in open(path).read()
     assert os.path.getsize(out / "cracks.png") > 0 and os.path.getsize(out / "bars.pvd") > 0
+
+
+def test_a_specimen_runs_bit_for_bit_on_any_thread_count():
+    """Every specimen goes through the cube's time-step loop: one thread or two,
+    the same curve to the last bit (the small notched beam, past its peak)."""
+    path = os.path.join(ROOT, "tests", "data", "beam_small.toml")
+    one, two = (SpecimenTest.from_file(path, {"threads": t, "final_strain": 6e-4, "strain_rate": 1.0}).run()
+                for t in (1, 2))
+    assert one.curve["broken_bars"][-1] > 10
+    for column in one.curve:
+        np.testing.assert_array_equal(one.curve[column], two.curve[column], err_msg=column)

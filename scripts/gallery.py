@@ -1,0 +1,57 @@
+"""The example gallery of README: runs every examples/*.toml (unless its run
+folder is there already) and puts its curve and its crack picture side by side
+in doc/gallery/NAME.png.
+
+    /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1]
+"""
+import argparse
+import glob
+import json
+import os
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.image  # noqa: E402
+import matplotlib.pyplot as plt  # noqa: E402
+
+import ldem  # noqa: E402
+
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--runs", default=os.path.join("out", "gallery"), help="run folders, one per example")
+    ap.add_argument("--out", default=os.path.join(ROOT, "doc", "gallery"), help="where the pictures go")
+    ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run")
+    args = ap.parse_args()
+    os.makedirs(args.out, exist_ok=True)
+    for path in sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml"))):
+        name = os.path.splitext(os.path.basename(path))[0]
+        run = os.path.join(args.runs, name)
+        if not _done(run):
+            ldem.run_cube(ldem.SpecimenTest.from_file(path, {"threads": args.threads}), out=run, progress=False)
+        s = json.load(open(os.path.join(run, "summary.json")))
+        fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), gridspec_kw={"width_ratios": [1, 1.15]})
+        for ax, picture in zip(axes, ("curve.png", "cracks.png")):
+            ax.imshow(matplotlib.image.imread(os.path.join(run, picture)))
+            ax.axis("off")
+        fig.suptitle(f"examples/{name}.toml: peak {s['peak_stress_MPa']:.3f} MPa, {s['n_bars']} bars, "
+                     f"{s['wall_s']:.0f} s on {s['threads']} thread(s)", fontsize=10)
+        fig.tight_layout()
+        fig.savefig(os.path.join(args.out, name + ".png"), dpi=110)
+        plt.close(fig)
+        print(f"{name}: peak {s['peak_stress_MPa']:.4f} MPa at strain {s['strain_at_peak']:.3e}, stop "
+              f"{s['stop_reason']}, energy balance error {s['energy_balance_error']:.1e}, {s['wall_s']:.0f} s")
+
+
+def _done(run: str) -> bool:
+    try:
+        return json.load(open(os.path.join(run, "summary.json")))["status"] == "done"
+    except (OSError, ValueError, KeyError):
+        return False
+
+
+if __name__ == "__main__":
+    main()
