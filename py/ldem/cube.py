@@ -63,7 +63,8 @@ class _CubeTestMethods:
         strain) and returns what it computed; writes nothing.
 
         observers: callables given each curve row (a dict over CURVE_COLUMNS)
-        as it is recorded, e.g. ldem.io.CurveCsv or ldem.progress.ProgressBar.
+        as it is recorded, e.g. ldem.io.CurveCsv or ldem.progress.ProgressBar;
+        one that returns False stops the run at that row (stop_reason "stopped").
         simulation: a specimen from self.simulation(), if you built it already,
         or one restored from a checkpoint (its run continues; previous_rows are
         the curve rows recorded before the checkpoint).
@@ -88,9 +89,10 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
         row = curve_row(p)
         row.update({f"{name}_m": value for name, value in zip(probes, p.probes)})
         rows.append(row)
-        for o in observers:
-            o(row)
-        return True
+        keep = True
+        for o in observers:  # each sees every row; one that returns False stops the run ("stopped")
+            keep = (o(row) is not False) and keep
+        return keep
 
     try:
         summary = sim.run(observe)

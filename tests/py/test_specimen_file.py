@@ -201,3 +201,12 @@ def test_a_specimen_runs_bit_for_bit_on_any_thread_count():
     assert one.curve["broken_bars"][-1] > 10
     for column in one.curve:
         np.testing.assert_array_equal(one.curve[column], two.curve[column], err_msg=column)
+
+
+def test_an_observer_that_returns_false_stops_the_run():
+    test = SpecimenTest.from_file(os.path.join(ROOT, "examples", "cube_uniform.toml"), FAST)
+    seen = []
+    result = test.run(observers=[seen.append, lambda row: row["mean_strain"] < 1e-4])
+    assert result.summary["stop_reason"] == "stopped"
+    strain = result.curve["mean_strain"]
+    assert strain[-1] >= 1e-4 > strain[-2] and len(seen) == len(strain)  # every observer saw the last row
