@@ -12,7 +12,7 @@ import statistics
 import subprocess
 
 from ldem import _core
-from ldem.cli import bench_program
+from ldem.bench import bench_program
 
 
 def bench(shape: str, n: int, steps: int, threads: int) -> dict:

@@ -15,7 +15,7 @@ import time
 
 import ldem.yade as ly
 from ldem import _core
-from ldem.cli import bench_program
+from ldem.bench import bench_program
 from ldem.scene import exit_with
 
 

@@ -5,13 +5,12 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
-import shutil
 import signal
-import subprocess
 import sys
 
 import numpy as np
 
+from .bench import cmd_bench
 from .helptext import HelpFormatter
 
 EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
@@ -74,14 +73,17 @@ def cmd_cube(args) -> int:
     progress = False if args.no_progress else None
     from .runner import run_cube
 
-    try:
-        snapshots = [float(x) for x in args.snapshots.split(",") if x.strip()]
-    except ValueError:
-        raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
     result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots,
-                      figure_format=args.figure_format, snapshots=snapshots,
+                      figure_format=args.figure_format, snapshots=_snapshots(args),
                       checkpoint_every=args.checkpoint_every, restart=bool(args.restart))
     return report_run(result, args, edge=test.load == "triangular")
+
+
+def _snapshots(args) -> list:
+    try:
+        return [float(x) for x in args.snapshots.split(",") if x.strip()]
+    except ValueError:
+        raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
 
 
 def report_run(result, args, edge: bool = False) -> int:
@@ -164,33 +166,17 @@ def cmd_run(args) -> int:
     test = SpecimenTest.from_file(args.file, settings(args.set))
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
-                      figure_format=args.figure_format)
+                      figure_format=args.figure_format, snapshots=_snapshots(args),
+                      checkpoint_every=args.checkpoint_every, restart=args.restart)
     return report_run(result, args)
 
 
-def bench_program() -> str:
-    """The ldem-bench program: beside the installed package's command, or in the build tree."""
-    here = os.path.dirname(os.path.abspath(__file__))
-    for candidate in (os.path.join(here, "..", "..", "pkg", "ldem-bench"), shutil.which("ldem-bench")):
-        if candidate and os.access(candidate, os.X_OK):
-            return candidate
-    raise ValueError("ldem-bench not found: run install.sh (it builds and installs it)")
-
-
-def cmd_bench(args) -> int:
-    """One line of JSON from ldem-bench (a separate program, so that its peak
-    resident memory is the run's own and no interpreter is counted)."""
-    for name in ("modules", "steps", "repeats"):
-        if getattr(args, name) < 1:
-            raise ValueError(f"--{name} must be at least 1")
-    if args.threads < 0:
-        raise ValueError("--threads must be >= 0")
-    cmd = [bench_program(), "--modules", str(args.modules), "--steps", str(args.steps),
-           "--threads", str(args.threads), "--repeats", str(args.repeats)]
-    return subprocess.run(cmd).returncode
-
-
 def _output_options(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--checkpoint-every", type=int, default=0, metavar="ROWS",
+                   help="write checkpoint.npz (the whole state) every ROWS curve rows; 0: never")
+    p.add_argument("--snapshots", default="", metavar="STRAINS",
+                   help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
+                        "(comma-separated; the end state is always written)")
     p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
     p.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
@@ -215,14 +201,9 @@ def build_parser() -> argparse.ArgumentParser:
     add_cube_options(c)
     c.add_argument("--out", default=os.path.join("out", "cube"), metavar="DIR", help="output folder")
     _output_options(c)
-    c.add_argument("--checkpoint-every", type=int, default=0, metavar="ROWS",
-                   help="write checkpoint.npz (the whole state) every ROWS curve rows; 0: never")
     c.add_argument("--restart", default=None, metavar="DIR",
                    help="continue the run of DIR/checkpoint.npz in DIR, with its parameters, bit for bit as if it "
                         "had never stopped (other parameters are ignored)")
-    c.add_argument("--snapshots", default="", metavar="STRAINS",
-                   help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
-                        "(comma-separated; the end state is always written)")
     c.set_defaults(func=cmd_cube)
 
     f = sub.add_parser("run", help="any specimen from a TOML file (examples/: beams, cylinders, dog-bones, cubes)",
@@ -233,6 +214,8 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
     f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
+    f.add_argument("--restart", action="store_true",
+                   help="continue the run of --out's checkpoint.npz, bit for bit (the same file and --set)")
     _output_options(f)
     f.set_defaults(func=cmd_run)
 

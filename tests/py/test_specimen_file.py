@@ -210,3 +210,32 @@ def test_an_observer_that_returns_false_stops_the_run():
     assert result.summary["stop_reason"] == "stopped"
     strain = result.curve["mean_strain"]
     assert strain[-1] >= 1e-4 > strain[-2] and len(seen) == len(strain)  # every observer saw the last row
+
+
+def test_ldem_run_restarts_bit_for_bit(cli, tmp_path):
+    """ldem run --checkpoint-every, stopped (SIGTERM's way: an interrupt after the
+    second checkpoint), then --restart: the same curve.csv as a run that never stopped."""
+    path = os.path.join(ROOT, "tests", "data", "beam_small.toml")
+    common = ["--no-progress", "--no-plots", "--set", "threads=1", "--set", "final_strain=6e-4", "--set",
+              "strain_rate=1.0"]
+    r = cli("run", path, "--out", str(tmp_path / "whole"), *common)
+    assert r.returncode == 0, r.stderr
+    test = SpecimenTest.from_file(path, {"threads": 1, "final_strain": 6e-4, "strain_rate": 1.0})
+    seen = []
+
+    def interrupt(row):
+        seen.append(row)
+        if len(seen) == 2 * 40 + 3:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        ldem.run_cube(test, out=str(tmp_path / "cut"), progress=False, plots=False, checkpoint_every=40,
+                      observers=[interrupt])
+    r = cli("run", path, "--out", str(tmp_path / "cut"), "--restart", *common)
+    assert r.returncode == 0, r.stderr
+    whole, again = ((tmp_path / d / "curve.csv").read_text() for d in ("whole", "cut"))
+    assert again == whole and len(whole.splitlines()) > 2 * 40 + 3
+    assert "cmod_m" in whole.splitlines()[0]
+    r = cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--out", str(tmp_path / "cut"), "--restart",
+            *common)
+    assert r.returncode == 2 and "other parameters" in r.stderr
