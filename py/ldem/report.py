@@ -126,13 +126,18 @@ def fractal_figure(table, case_rows, fits, path):
 
 
 def damping_figures(out, cases, fmt: str = "png") -> List[str]:
-    """One figure per load: the stress-strain curve at each damping ratio."""
+    """One figure per load: the stress-strain curve at each damping ratio, up
+    to 8 times the largest strain at the peak (the runs go on to separation, at
+    strains a hundred times larger, where the curves lie on zero)."""
     names = []
     for load in dict.fromkeys(c.test.load for c in cases):
         fig, ax = plt.subplots(figsize=(6.4, 4.4))
-        for t, s, c in ((g.test, g.summary, g.curve) for g in cases if g.test.load == load):
+        group = [g for g in cases if g.test.load == load]
+        for t, s, c in ((g.test, g.summary, g.curve) for g in group):
             ax.plot(c["mean_strain"], c["stress_MPa"], lw=1.4,
-                    label=f"zeta = {t.zeta:g}: peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
+                    label=f"zeta = {t.zeta:g}: peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}"
+                          + (f", U_num/U_min {s['U_ratio']:.3f}" if s.get("U_ratio") else ""))
+        ax.set_xlim(0, 8 * max(g.summary["strain_at_peak"] for g in group))
         _strain_axis(ax, plots.STRESS_LABEL)
         ax.set_title(f"damping, {cases[0].test.size:g} m cube, {load}, seed {cases[0].test.seed}")
         ax.legend(fontsize=8)
