@@ -3,11 +3,13 @@ displacement and coloured by damage state (0 undamaged, 1 damaged, 2 broken),
 with the broken bars drawn thick on top; saves a picture of the last frame.
 
     pvpython scripts/paraview_crack.py out/cube            # writes out/cube/crack_paraview.png
+    xvfb-run -a -s "-noreset" pvbatch scripts/paraview_crack.py out/cube   # no display (a server, CI)
     paraview --script=scripts/paraview_crack.py            # (edit RUN below) to explore interactively
 
-Needs ParaView's pvpython (Debian: paraview), which is not one of ldem's
-dependencies; the run folder must hold bars.pvd and crack.pvd (ldem cube
-writes them; --snapshots adds frames at chosen mean strains).
+Needs ParaView (Debian: paraview; install.sh installs it, with xvfb for machines
+without a display); the run folder must hold bars.pvd and crack.pvd (ldem cube
+and ldem run write them; --snapshots adds frames at chosen mean strains). The
+camera looks along +y with z up: the side of a specimen pulled or bent along z.
 """
 import os
 import sys
@@ -32,6 +34,8 @@ lut.IndexedColors = [0.0, 1.0, 1.0, 1.0, 0.65, 0.0, 1.0, 0.0, 0.0]  # the study'
 scene = GetAnimationScene()
 scene.UpdateAnimationUsingDataTimeSteps()
 scene.AnimationTime = scene.EndTime
+view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, -1, 0], [0, 0, 0], [0, 0, 1]
+view.OrientationAxesVisibility = 1
 ResetCamera()
 Render()
 SaveScreenshot(os.path.join(RUN, "crack_paraview.png"), view, ImageResolution=[1200, 1000])
