@@ -42,7 +42,7 @@ struct Measures {
     double area = 0;            // [m^2]
     double gaugeLength = 0;     // [m]: drive velocity = strain rate x gauge length
     double meanDriveWeight = 0; // mean weight of the loaded group's DOFs along dim:
-                                // mean strain = U(t) x meanDriveWeight / gaugeLength
+                                // mean strain = U(t) x |meanDriveWeight| / gaugeLength
     std::vector<Probe> probes;  // extra displacements in every record
     // The specimen is split when no chain of intact bars joins support and loaded.
     double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
