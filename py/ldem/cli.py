@@ -11,7 +11,7 @@ import sys
 import numpy as np
 
 from .bench import cmd_bench
-from .helptext import HelpFormatter
+from .helptext import HelpFormatter, add_output_flags
 
 EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
 
@@ -177,10 +177,8 @@ def _output_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--snapshots", default="", metavar="STRAINS",
                    help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
                         "(comma-separated; the end state is always written)")
-    p.add_argument("--no-progress", action="store_true", help="no progress bar")
     p.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
-    p.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
-                   help="format of the pictures (pdf and svg: vector, for papers)")
+    add_output_flags(p)
 
 
 def build_parser() -> argparse.ArgumentParser:

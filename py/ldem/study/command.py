@@ -6,7 +6,7 @@ import argparse
 import time
 from typing import List, Sequence
 
-from ..helptext import HelpFormatter
+from ..helptext import HelpFormatter, add_output_flags
 from ..cube import CubeTest, settings
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
@@ -122,10 +122,8 @@ def add_parser(sub) -> None:
         q.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                        help="any other CubeTest parameter for every case, e.g. --set bottom_lateral=free "
                             "(repeatable; see ldem cube --help)")
-        q.add_argument("--no-progress", action="store_true", help="no progress bar")
         q.add_argument("--no-report", action="store_true", help="tables only: no figures, no report.md")
-        q.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"),
-                       help="format of the figures (pdf and svg: vector, for papers)")
+        add_output_flags(q)
 
     s = kinds.add_parser("size-effect", help="sizes x seeds x loads: tables, curves, cracks, energies, fractal fit",
                          formatter_class=HelpFormatter)
