@@ -175,6 +175,9 @@ class Build:
             raise where("measure.loaded", f"group '{out['loaded']}' must be driven along one direction "
                                           f"(it is along {['xyz'[d] for d in driven] or 'none'})")
         out["dim"] = driven[0]
+        if np.intersect1d(self.groups[out["support"]], self.groups[out["loaded"]]).size:
+            raise where("measure.loaded", f"groups '{out['support']}' and '{out['loaded']}' share nodes: the "
+                                          "support's reactions and the separation need two apart")
         along = loaded & (dim == driven[0])
         out["mean_drive_weight"] = float(weight[along].sum() / len(self.groups[out["loaded"]]))
         out["area"] = number(m.get("area"), where, "measure.area")

@@ -152,6 +152,9 @@ def _file(tmp_path, text, base="cube_uniform"):
      "groups.side: node at [0.0, 0.0, 0.0] direction z is also prescribed by group 'bottom'"),
     (lambda s: s.replace('loaded = "top"', 'loaded = "bottom"'), "measure.loaded: group 'bottom' must be driven"),
     (lambda s: s.replace('support = "bottom"', 'support = "base"'), "measure.support: must name a group"),
+    (lambda s: s.replace('support = "bottom"', 'support = "all"').replace(
+        "[measure]", "[groups.all]\nbox = {min = [0, 0, 0], max = [0.12, 0.12, 0.12]}\n\n[measure]"),
+     "measure.loaded: groups 'all' and 'top' share nodes"),
     (lambda s: s + "\n[material]\nnu = 0.7\n", "material.nu: nu must be in"),
     (lambda s: s + "\n[loading]\nload = 'triangular'\n", "loading.load: a cube-test parameter"),
     (lambda s: s + "\n[run]\nseed = 'one'\n", "run.seed: must be int"),
