@@ -134,7 +134,8 @@ double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     return sum;
 }
 
-double Simulation::supportStress() const { return meas_.sense() * groupForce(*support_) / meas_.area; }
+// 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
+double Simulation::supportStress() const { return (0.0 + meas_.sense() * groupForce(*support_)) / meas_.area; }
 
 bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
