@@ -250,6 +250,12 @@ class SpecimenTest:
             setattr(self, k, self.build.params[k])
 
     @classmethod
+    def of(cls, **sections) -> "SpecimenTest":
+        """From keyword arguments, one per section of the file: title, shape,
+        groups, measure, material, loading, run (dicts shaped as the file's)."""
+        return cls(sections)
+
+    @classmethod
     def from_file(cls, path: str, overrides: Optional[dict] = None) -> "SpecimenTest":
         try:
             with open(path, "rb") as f:

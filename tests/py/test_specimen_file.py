@@ -170,6 +170,17 @@ def test_a_bad_file_is_one_line_naming_the_key_and_exit_2(cli, tmp_path, change,
     assert not os.path.exists(tmp_path / "out" / "summary.json")
 
 
+def test_keyword_arguments_build_what_the_file_builds():
+    data = example("beam_3pb")
+    a, b = SpecimenTest.from_file(os.path.join(ROOT, "examples", "beam_3pb.toml")), SpecimenTest.of(**data)
+    for x, y in zip(a.build.prescribed, b.build.prescribed):
+        np.testing.assert_array_equal(x, y)
+    assert a.build.measures == b.build.measures and a.build.params == b.build.params
+    assert all(np.array_equal(a.build.groups[k], b.build.groups[k]) for k in data["groups"])
+    with pytest.raises(SpecimenError, match="^colour: unknown key"):
+        SpecimenTest.of(colour=1, **data)
+
+
 def test_the_line_named_is_the_key_s_line(tmp_path):
     path = _file(tmp_path, lambda s: s.replace('face = "z+"', 'face = "top"'))
     with pytest.raises(SpecimenError) as e:
