@@ -116,7 +116,7 @@ def predict(args) -> None:
             for seed in range(1, args.seeds + 1):
                 case = os.path.join(args.out, "cases", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
                 done = os.path.join(case, "summary.json")
-                if not os.path.exists(done):
+                if not (os.path.exists(done) and json.load(open(done)).get("status") == "done"):
                     ldem.run_cube(beam(D, notch, args.eps_p, seed), out=case, progress=False, plots=(seed == 1),
                                   observers=[PastThePeak()])
                 s = json.load(open(done))
