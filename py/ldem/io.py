@@ -11,7 +11,6 @@ from typing import List, Sequence
 
 import numpy as np
 
-from .cube import CURVE_COLUMNS
 
 
 @contextlib.contextmanager
@@ -62,10 +61,10 @@ class CurveCsv:
     def __init__(self, path: str, append: bool = False):
         self.path = path
         self._f = open(path, "a" if append else "w")
-        self._columns = None
+        self._columns = None  # the header's, once known
         if append:
             with open(path) as f:
-                self._columns = f.readline().strip().split(",") or None
+                self._columns = f.readline().strip().split(",")
 
     def __call__(self, row: dict) -> None:
         if self._columns is None:  # the header: the cube's columns, then a specimen's probes

@@ -377,6 +377,7 @@ PYBIND11_MODULE(_core, m) {
                                    d["support"] = m.support, d["loaded"] = m.loaded, d["dim"] = m.dim;
                                    d["area"] = m.area, d["gauge_length"] = m.gaugeLength;
                                    d["mean_drive_weight"] = m.meanDriveWeight;
+                                   d["sense"] = m.sense();  // +1 pulled, -1 pushed (Measures::sense)
                                    py::list probes;
                                    for (const Probe& q : m.probes) probes.append(py::make_tuple(q.name, q.a, q.b, q.dim));
                                    d["probes"] = probes;

@@ -52,7 +52,7 @@ class SimulationSpecimen:
         self.radius = radius_factor * lat.L0
         held, self.driven = constraints(sim)
         m = sim.measures
-        self.dim, self.sense = int(m["dim"]), (-1.0 if m["mean_drive_weight"] < 0 else 1.0)
+        self.dim, self.sense = int(m["dim"]), m["sense"]
         self.mean_weight = abs(m["mean_drive_weight"])  # ldem's own number
         self.support = [int(n) for n in sim.group(m["support"])]
         self.loaded = [int(n) for n in sim.group(m["loaded"])]
