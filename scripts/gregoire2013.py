@@ -25,7 +25,7 @@ The material, and why:
   (PastThePeak), or at a deflection of 3e-3 D.
 
     /usr/bin/python3 scripts/gregoire2013.py calibrate
-    /usr/bin/python3 scripts/gregoire2013.py predict --eps-p E --out results/beams/gregoire2013 [--seeds 6]
+    /usr/bin/python3 scripts/gregoire2013.py predict --eps-p E --out results/beams/gregoire2013 [--seeds 6] [--jobs 2]
     /usr/bin/python3 scripts/gregoire2013.py curves [--out ...]      # curves/*.csv, curves.png
 """
 import argparse
@@ -107,25 +107,44 @@ def calibrate(args) -> None:
     print(f"eps_p = {eps:.6g}")
 
 
+def case_dir(out: str, D: float, notch: float, seed: int) -> str:
+    return os.path.join(out, "cases", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
+
+
+def finished(case: str) -> bool:
+    done = os.path.join(case, "summary.json")
+    return os.path.exists(done) and json.load(open(done)).get("status") == "done"
+
+
+def run_case(job) -> str:
+    out, D, notch, seed, eps_p = job
+    case = case_dir(out, D, notch, seed)
+    ldem.run_cube(beam(D, notch, eps_p, seed), out=case, progress=False, plots=(seed == 1),
+                  observers=[PastThePeak()])
+    return case
+
+
 def predict(args) -> None:
+    """Runs the cases not yet finished (--jobs at a time, one thread each), then
+    writes predictions.csv from all of them."""
+    import multiprocessing
+
     os.makedirs(args.out, exist_ok=True)
+    series = [(D, notch) for D in (0.05, 0.1, 0.2) for notch in (0.0, 0.2, 0.5)]
+    todo = [(args.out, D, notch, seed, args.eps_p) for D, notch in series for seed in range(1, args.seeds + 1)
+            if not finished(case_dir(args.out, D, notch, seed))]
+    with multiprocessing.Pool(args.jobs) as pool:
+        for case in pool.imap_unordered(run_case, todo):
+            s = json.load(open(os.path.join(case, "summary.json")))
+            print(f"{os.path.basename(case)}: peak {s['peak_stress_MPa'] * 1e3:.3f} kN, {s['wall_s']:.0f} s",
+                  flush=True)
     rows = []
-    for D in (0.05, 0.1, 0.2):
-        for notch in (0.0, 0.2, 0.5):
-            loads = []
-            for seed in range(1, args.seeds + 1):
-                case = os.path.join(args.out, "cases", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
-                done = os.path.join(case, "summary.json")
-                if not (os.path.exists(done) and json.load(open(done)).get("status") == "done"):
-                    ldem.run_cube(beam(D, notch, args.eps_p, seed), out=case, progress=False, plots=(seed == 1),
-                                  observers=[PastThePeak()])
-                s = json.load(open(done))
-                loads.append(s["peak_stress_MPa"] * 1e3)  # the force [MN] -> kN
-                print(f"D {D * 1e3:g} mm notch {notch:g}: seed {seed} peak {loads[-1]:.3f} kN at deflection "
-                      f"{s['strain_at_peak'] * D * 1e3:.4f} mm, {s['wall_s']:.0f} s", flush=True)
-            rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
-                         "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
-                         "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
+    for D, notch in series:
+        loads = [json.load(open(os.path.join(case_dir(args.out, D, notch, seed), "summary.json")))["peak_stress_MPa"]
+                 * 1e3 for seed in range(1, args.seeds + 1)]  # the force [MN] -> kN
+        rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
+                     "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
+                     "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
     io.write_table(os.path.join(args.out, "predictions.csv"), rows,
                    ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN"])
     for r in rows:
@@ -144,7 +163,7 @@ def curves(args) -> None:
         for notch, colour in zip((0.0, 0.2, 0.5), ("C0", "C1", "C2")):
             columns = {}
             for seed in range(1, args.seeds + 1):
-                path = os.path.join(args.out, "cases", f"D{D * 1e3:g}_n{notch:g}_s{seed}", "curve.csv")
+                path = os.path.join(case_dir(args.out, D, notch, seed), "curve.csv")
                 if not os.path.exists(path):
                     continue
                 c = io.read_curve(path)
@@ -170,6 +189,7 @@ def main(argv) -> None:
     p.add_argument("--eps-p", type=float, required=True)
     p.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     p.add_argument("--seeds", type=int, default=6)
+    p.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each")
     c = sub.add_parser("curves")
     c.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     c.add_argument("--seeds", type=int, default=6)
