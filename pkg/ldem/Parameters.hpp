@@ -54,7 +54,9 @@
     X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),                \
       "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                             \
     X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                       \
-      "drive velocity factor once the load is lost (reaches separation in fewer steps)")
+      "drive velocity factor once the load is lost (reaches separation in fewer steps)")                       \
+    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                     \
+      "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
 
 #define LDEM_RUN_PARAMETERS(X)                                                                               \
     X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")     \

@@ -65,6 +65,11 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     drive_.v0 = load_.strainRate * meas_.gaugeLength;
     drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
     drive_.speedup = load_.lossSpeedup;
+    if (openingControl() != (load_.openingRate > 0))
+        throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
+                                                     : "opening_rate needs a controlled probe (measure.control)");
+    servo_.rate = load_.openingRate, servo_.gain = 0.5 * Df_, servo_.vmax = drive_.v0;
+    servo_.rampTime = drive_.rampTime;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
@@ -139,17 +144,19 @@ double Simulation::supportStress() const { return (0.0 + meas_.sense() * groupFo
 
 bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
+double Simulation::probe(const Probe& q) const {
+    const std::vector<double>& u = q.dim == 0 ? u_.x : q.dim == 1 ? u_.y : u_.z;
+    return u[q.b] - (q.a >= 0 ? u[q.a] : 0.0);
+}
+
 CurvePoint Simulation::measure() const {
     CurvePoint p;
     p.step = step_;
     p.time = time_;
-    p.meanStrain = meanStrainAt(time_);
+    p.meanStrain = meanStrainOf(driveNow());
     p.stress = supportStress();
     p.stressLoaded = (0.0 - meas_.sense() * groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
-    for (const Probe& q : meas_.probes) {
-        const std::vector<double>& u = q.dim == 0 ? u_.x : q.dim == 1 ? u_.y : u_.z;
-        p.probes.push_back(u[q.b] - (q.a >= 0 ? u[q.a] : 0.0));
-    }
+    for (const Probe& q : meas_.probes) p.probes.push_back(probe(q));
     const BarEnergies e = barEnergies(lat_, u_, bars_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_.mass, pre_.mask, v_);
@@ -174,9 +181,11 @@ void Simulation::finishStep() {
     for (double d : layerDamping_) dampingWork_ += d;  // layer order: the same sum for any thread count
     // External work of the prescribed DOFs over the centred increment
     // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
-    const double tNext = time_ + dt_;
-    const double Unext = drive_.displacement(tNext), Unow = drive_.displacement(time_);
-    const double centred = 0.5 * (Unext - drive_.displacement(time_ - dt_));
+    // Under opening control the servo moves U from state n (its opening is that of state n).
+    const double tNext = time_ + dt_, Uback = driveBefore(), Unow = driveNow();
+    if (openingControl()) servo_.advance(dt_, time_, opening_);
+    const double Unext = openingControl() ? servo_.U : drive_.displacement(tNext);
+    const double centred = 0.5 * (Unext - Uback);
     for (std::size_t k = 0; k < pre_.node.size(); ++k) {
         const auto n = pre_.node[k];
         const int d = pre_.dim[k];
@@ -188,13 +197,14 @@ void Simulation::finishStep() {
     }
     time_ = tNext;
     ++step_;
+    if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
 }
 
 Checkpoint Simulation::checkpoint() const {
     if (!progress_.pendingAdvance)
         throw std::logic_error("a checkpoint is taken at a record, from run()'s observer");
     return {u_, v_, f_, bars_.kappa, bars_.epsR, bars_.softening, time_, externalWork_, dampingWork_,
-            drive_.speedupStart, step_, progress_};
+            drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
 }
 
 void Simulation::restore(const Checkpoint& c) {
@@ -206,6 +216,8 @@ void Simulation::restore(const Checkpoint& c) {
     bars_.kappa = c.kappa, bars_.epsR = c.epsR, bars_.softening = c.softening;
     time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
     drive_.speedupStart = c.speedupStart, step_ = c.step;
+    servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
+    if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.pendingAdvance = true;
 }
@@ -223,12 +235,12 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     }
     RunSummary& s = g.summary;
     // The peak, at every step: the stress of state n is known once its forces are.
-    auto trackPeak = [&](double tn) {
+    auto trackPeak = [&](double U) {
         const double stress = supportStress();
         if (stress <= s.peakStress) return;
         s.peakStress = stress;
-        s.strainAtPeak = meanStrainAt(tn);
-        s.edgeStrainAtPeak = drive_.displacement(tn) / meas_.gaugeLength;
+        s.strainAtPeak = meanStrainOf(U);
+        s.edgeStrainAtPeak = U / meas_.gaugeLength;
     };
     if (g.pendingAdvance) {  // restored at a record: the rest of that step
         g.pendingAdvance = false;
@@ -237,12 +249,12 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
-            trackPeak(time_ - dt_);
+            trackPeak(driveBefore());
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.
         computeForces();
-        trackPeak(time_);
+        trackPeak(driveNow());
         const CurvePoint p = measure();
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the

@@ -96,6 +96,7 @@ struct Checkpoint {
     std::vector<double> kappa, epsR;
     std::vector<std::uint8_t> softening;
     double time = 0, externalWork = 0, dampingWork = 0, speedupStart = 0;
+    double servoU = 0, servoUprev = 0;  // the servo's drive displacement at t_n, t_n-1 (opening control)
     std::int64_t step = 0;
     RunProgress progress;
 };
@@ -169,6 +170,8 @@ public:
     double supportStress() const;  // reactions of the support group / area, state n [Pa]
     bool facesJoined() const;      // some chain of intact bars joins the support and loaded groups
     double rampTime() const { return drive_.rampTime; }
+    bool openingControl() const { return meas_.control >= 0; }
+    const Servo& servo() const { return servo_; }
     double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }
     std::int64_t clampedBars() const { return clamped_; }
@@ -177,9 +180,11 @@ public:
     double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
 
 private:
-    double meanStrainAt(double t) const {
-        return drive_.displacement(t) * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength;
-    }
+    // The drive's displacement U at t_n and at t_n-1: the program's, or the servo's state.
+    double driveNow() const { return openingControl() ? servo_.U : drive_.displacement(time_); }
+    double driveBefore() const { return openingControl() ? servo_.Uprev : drive_.displacement(time_ - dt_); }
+    double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
+    double probe(const Probe& q) const;  // its reading at the current state [m]
     double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, pre_.mask, f_, u_, v_); }
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
@@ -196,6 +201,8 @@ private:
     const std::vector<std::int32_t>* loaded_ = nullptr;   // groups_[meas_.loaded]
     Frequencies freq_;
     Drive drive_;
+    Servo servo_;
+    double opening_ = 0;  // the controlled probe at the current state (opening control)
     BarState bars_;
     Field3 u_, v_, f_;  // per node
     BarForceBuffers g_;  // bar forces of the layers in use

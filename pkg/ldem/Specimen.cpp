@@ -53,6 +53,9 @@ void validate(const Specimen& s) {
         checkNode(q.b, "probe '" + q.name + "'");
         if (q.dim < 0 || q.dim > 2) fail("probe '" + q.name + "' has direction " + std::to_string(q.dim));
     }
+    if (m.control < -1 || m.control >= int(m.probes.size()))
+        fail("the controlled probe " + std::to_string(m.control) + " is not one of the " +
+             std::to_string(m.probes.size()) + " probes");
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,

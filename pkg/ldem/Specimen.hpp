@@ -44,6 +44,7 @@ struct Measures {
     double meanDriveWeight = 0; // mean weight of the loaded group's DOFs along dim:
                                 // mean strain = U(t) x |meanDriveWeight| / gaugeLength
     std::vector<Probe> probes;  // extra displacements in every record
+    int control = -1;           // the probe a servo holds to LoadingParams::openingRate (-1: none; Loading.hpp)
     // The specimen is split when no chain of intact bars joins support and loaded.
     double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
 };

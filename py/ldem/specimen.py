@@ -13,7 +13,8 @@ The file (examples/ has one per classic test; README "Specimens from a file"):
                  fix = ["x", "z"] (held at 0), drive = {z = -1.0} (u_z = -1 x U(t)), linear = "x"
                  (the drive's weight grows linearly from 0 to its value across the group along x)
     [measure]    support, loaded (group names), area [m^2], gauge_length [m],
-                 probes = {cmod = {a = [..], b = [..], direction = "x"}}
+                 probes = {cmod = {a = [..], b = [..], direction = "x"}},
+                 control = "cmod" (a servo holds the probe to loading.opening_rate [m/s])
     [material], [loading], [run]: any parameter of `ldem cube --help` in those groups
 
 Stress = reactions of the support group along the drive's direction / area;
@@ -39,7 +40,7 @@ _PARAMS = {p["name"]: p for p in PARAMETERS}
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "box", "point", "union", "fix", "drive", "linear"}
-_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes"}
+_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control"}
 
 
 class Nodes:
@@ -198,6 +199,13 @@ class Build:
                 raise where(f"{key}.b", "missing: the point whose displacement is read")
             b = select(nodes, name, {"point": q["b"]}, {}, where)
             out["probes"].append((name, int(a[0]), int(b[0]), AXES[q["direction"]]))
+        names = [q[0] for q in out["probes"]]
+        if "control" in m and not named(m["control"], names):
+            raise where("measure.control", f"must name a probe (got {m['control']!r}; probes: {', '.join(names)})")
+        out["control"] = names.index(m["control"]) if "control" in m else -1
+        if (out["control"] >= 0) != (self.params["opening_rate"] > 0):
+            raise where("measure.control" if "control" in m else "loading.opening_rate",
+                        "opening control needs both measure.control (a probe) and loading.opening_rate > 0")
         return out
 
     def cpp_params(self):

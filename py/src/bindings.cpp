@@ -54,7 +54,7 @@ py::dict checkpointDict(const Checkpoint& c) {
     const RunSummary& s = g.summary;
     d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxWork,
                                                g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
-                                               s.fractureEnergy});
+                                               s.fractureEnergy, c.servoU, c.servoUprev});
     d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
     d["load_loss"] = eventArray(s.loadLoss), d["separation"] = eventArray(s.separation);
     std::vector<double> window;
@@ -77,6 +77,7 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
     RunProgress& g = c.progress;
     RunSummary& s = g.summary;
     c.time = sc.at(0), c.externalWork = sc.at(1), c.dampingWork = sc.at(2), c.speedupStart = sc.at(3);
+    if (sc.size() > 10) c.servoU = sc.at(10), c.servoUprev = sc.at(11);  // older checkpoints: no servo
     g.maxWork = sc.at(4), g.maxResidual = sc.at(5);
     s.peakStress = sc.at(6), s.strainAtPeak = sc.at(7), s.edgeStrainAtPeak = sc.at(8), s.fractureEnergy = sc.at(9);
     c.step = ct.at(0), g.lastCheck = ct.at(1), s.steps = ct.at(2);
@@ -307,6 +308,7 @@ PYBIND11_MODULE(_core, m) {
                          ms.probes.push_back({t[0].cast<std::string>(), t[1].cast<std::int32_t>(),
                                               t[2].cast<std::int32_t>(), t[3].cast<int>()});
                      }
+                 if (measures.contains("control")) ms.control = measures["control"].cast<int>();
                  py::gil_scoped_release release;
                  return std::make_unique<Simulation>(std::move(sp), mat, load, run);
              }),
@@ -314,7 +316,7 @@ PYBIND11_MODULE(_core, m) {
              py::arg("prescribed_weight"), py::arg("measures"), py::arg("material"), py::arg("loading"), py::arg("run"),
              "any specimen: a lattice (build_lattice), named node groups, prescribed DOFs u[node][dim] = weight x "
              "U(t), and measures {support, loaded, dim, area, gauge_length, mean_drive_weight, probes: [(name, a, "
-             "b, dim)]} (ldem.specimen builds them from a file)")
+             "b, dim)], control: index of the probe held to opening_rate, or -1} (ldem.specimen builds them from a file)")
         .def(
             "run",
             [](Simulation& s, py::object callback) {
@@ -381,6 +383,7 @@ PYBIND11_MODULE(_core, m) {
                                    py::list probes;
                                    for (const Probe& q : m.probes) probes.append(py::make_tuple(q.name, q.a, q.b, q.dim));
                                    d["probes"] = probes;
+                                   d["control"] = m.control;
                                    return d;
                                })
         .def_property_readonly("group_names",

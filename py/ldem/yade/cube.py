@@ -41,6 +41,9 @@ class SimulationSpecimen:
     def __init__(self, sim, damping=0.0, radius_factor=0.25, reset=True, name="_ldem_yade_specimen"):
         if sim.steps != 0:
             raise ValueError("SimulationSpecimen needs an ldem Simulation that has not run yet (its initial state)")
+        if sim.measures["control"] >= 0:
+            raise ValueError("the YADE bridge drives by displacement only: opening control (measure.control) is "
+                             "ldem's own")
         y = _yade()
         O = self.O = y["O"]
         if reset:
