@@ -38,8 +38,16 @@ STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 
 def curve_figure(result, path: str) -> None:
+    """Stress against strain; beside it, stress against each probe (NAME_m: a
+    beam's load against its CMOD, the curve laboratories report)."""
     c, s = result.curve, result.summary
-    fig, ax = plt.subplots()
+    probes = [k for k in c if k.endswith("_m")]
+    fig, axes = plt.subplots(1, 1 + bool(probes), figsize=(6.4 * (1 + 0.9 * bool(probes)), 4.8), squeeze=False)
+    ax = axes[0, 0]
+    for name in probes:
+        axes[0, 1].plot(c[name] * 1e3, c["stress_MPa"], lw=1, label=name[:-2])
+        axes[0, 1].set(xlabel="probe [mm]", ylabel=STRESS_LABEL)
+        axes[0, 1].legend()
     ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
     ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
     if "peak_stress_MPa" in s:
