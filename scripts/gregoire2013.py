@@ -26,6 +26,7 @@ The material, and why:
 
     /usr/bin/python3 scripts/gregoire2013.py calibrate
     /usr/bin/python3 scripts/gregoire2013.py predict --eps-p E --out results/beams/gregoire2013 [--seeds 6] [--jobs 2]
+    /usr/bin/python3 scripts/gregoire2013.py uniform --eps-p E [--jobs 2]  # G_f CV 0: cases_cv0/
     /usr/bin/python3 scripts/gregoire2013.py curves [--out ...]      # curves/*.csv, curves.png
 """
 import argparse
@@ -55,7 +56,7 @@ def prism(eps_p: float, seed: int) -> ldem.SpecimenTest:
         "run": {"seed": seed, "stop_at": "load_loss", "final_strain": 3e-3, "threads": 1}})
 
 
-def beam(D: float, notch: float, eps_p: float, seed: int) -> ldem.SpecimenTest:
+def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0) -> ldem.SpecimenTest:
     """Span 2.5 D centred on a length 3.5 D: supports at 0.5 D and 3 D. The
     notch (one module wide) and the platen (a module wide) are on the module at
     mid-span, or just right of it when mid-span is a node line (D = 100, 200 mm:
@@ -76,7 +77,7 @@ def beam(D: float, notch: float, eps_p: float, seed: int) -> ldem.SpecimenTest:
         "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [N]
                     "probes": {"cmod": {"a": [mid - 0.5 * L0, 0.0, 0.0], "b": [mid + 0.5 * L0, 0.0, 0.0],
                                         "direction": "x"}}},
-        "material": dict(MATERIAL, eps_p=eps_p), "loading": {"strain_rate": 0.1},
+        "material": dict(MATERIAL, eps_p=eps_p, Gf_cv=gf_cv), "loading": {"strain_rate": 0.1},
         "run": {"seed": seed, "final_strain": 3e-3, "threads": 1}})
 
 
@@ -107,8 +108,8 @@ def calibrate(args) -> None:
     print(f"eps_p = {eps:.6g}")
 
 
-def case_dir(out: str, D: float, notch: float, seed: int) -> str:
-    return os.path.join(out, "cases", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
+def case_dir(out: str, D: float, notch: float, seed: int, gf_cv: float = 1.0) -> str:
+    return os.path.join(out, "cases" if gf_cv == 1.0 else f"cases_cv{gf_cv:g}", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
 
 
 def finished(case: str) -> bool:
@@ -117,27 +118,31 @@ def finished(case: str) -> bool:
 
 
 def run_case(job) -> str:
-    out, D, notch, seed, eps_p = job
-    case = case_dir(out, D, notch, seed)
-    ldem.run_cube(beam(D, notch, eps_p, seed), out=case, progress=False, plots=(seed == 1),
+    out, D, notch, seed, eps_p, gf_cv = job
+    case = case_dir(out, D, notch, seed, gf_cv)
+    ldem.run_cube(beam(D, notch, eps_p, seed, gf_cv), out=case, progress=False, plots=(seed == 1),
                   observers=[PastThePeak()])
     return case
+
+
+def run_all(jobs: list, processes: int) -> None:
+    """The jobs whose case is not finished, `processes` at a time (one thread each)."""
+    import multiprocessing
+
+    todo = [j for j in jobs if not finished(case_dir(j[0], *j[1:4], j[5]))]
+    with multiprocessing.Pool(processes) as pool:
+        for case in pool.imap_unordered(run_case, todo):
+            s = json.load(open(os.path.join(case, "summary.json")))
+            print(f"{case}: peak {s['peak_stress_MPa'] * 1e3:.3f} kN, {s['wall_s']:.0f} s", flush=True)
 
 
 def predict(args) -> None:
     """Runs the cases not yet finished (--jobs at a time, one thread each), then
     writes predictions.csv from all of them."""
-    import multiprocessing
-
     os.makedirs(args.out, exist_ok=True)
     series = [(D, notch) for D in (0.05, 0.1, 0.2) for notch in (0.0, 0.2, 0.5)]
-    todo = [(args.out, D, notch, seed, args.eps_p) for D, notch in series for seed in range(1, args.seeds + 1)
-            if not finished(case_dir(args.out, D, notch, seed))]
-    with multiprocessing.Pool(args.jobs) as pool:
-        for case in pool.imap_unordered(run_case, todo):
-            s = json.load(open(os.path.join(case, "summary.json")))
-            print(f"{os.path.basename(case)}: peak {s['peak_stress_MPa'] * 1e3:.3f} kN, {s['wall_s']:.0f} s",
-                  flush=True)
+    run_all([(args.out, D, notch, seed, args.eps_p, 1.0) for D, notch in series
+             for seed in range(1, args.seeds + 1)], args.jobs)
     rows = []
     for D, notch in series:
         loads = [json.load(open(os.path.join(case_dir(args.out, D, notch, seed), "summary.json")))["peak_stress_MPa"]
@@ -149,6 +154,14 @@ def predict(args) -> None:
                    ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN"])
     for r in rows:
         print(f"{r['D_mm']:g} mm, notch {r['notch_ratio']:g}: {r['peak_load_kN']:.3f} kN (CV {r['cv']:.3f})")
+
+
+def uniform(args) -> None:
+    """The same nine beams with a uniform G_f (CV 0, one specimen each: the
+    field is the only randomness): what the random field does to the size
+    effect (scripts/beam_size_effect.py compares). Cases in OUT/cases_cv0/."""
+    run_all([(args.out, D, notch, 1, args.eps_p, 0.0) for D in (0.05, 0.1, 0.2) for notch in (0.0, 0.2, 0.5)],
+            args.jobs)
 
 
 def curves(args) -> None:
@@ -190,11 +203,15 @@ def main(argv) -> None:
     p.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     p.add_argument("--seeds", type=int, default=6)
     p.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each")
+    u = sub.add_parser("uniform")
+    u.add_argument("--eps-p", type=float, required=True)
+    u.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
+    u.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each")
     c = sub.add_parser("curves")
     c.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     c.add_argument("--seeds", type=int, default=6)
     args = ap.parse_args(argv)
-    {"calibrate": calibrate, "predict": predict, "curves": curves}[args.command](args)
+    {"calibrate": calibrate, "predict": predict, "uniform": uniform, "curves": curves}[args.command](args)
 
 
 if __name__ == "__main__":
