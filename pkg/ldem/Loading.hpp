@@ -54,8 +54,8 @@ struct Drive {
 // damping every mode has 2 zeta_i omega_i = D_f, and the integral loop
 // U' = (g/a) (c* - c) around a mode that opens the mouth as c = a_t U crosses
 // -180 degrees at omega_i with the gain (g/a) a_t / D_f; below 1, stable, as
-// long as the tangent ratio a_t < 2a. Past the peak, where a_t turns negative
-// (a snap-back), the drive backs off.
+// long as the tangent ratio a_t < 2a. Past the peak a crack that runs on its
+// own opens the mouth ahead of the program (c > c*), and the drive backs off.
 struct Servo {
     double rate = 0;      // r [m/s]
     double gain = 0;      // g [1/s]
