@@ -8,7 +8,7 @@ group does (held, driven, free) and what the run measures.
 The file (examples/ has one per classic test; README "Specimens from a file"):
     title = "..."
     [shape]      kind = "box" | "cylinder" | "dogbone" | "mask", L0 [m] and the kind's sizes [m]
-    [groups.NAME] face = "z-" | plane = {x = 0.1} | box = {min = [..], max = [..]} | point = [x, y, z]
+    [groups.NAME] face = "z-" | plane = {x = 0.1} | line = {x = 0.1, z = 0} | box = {min, max} | point = [x, y, z]
                  (several selectors: the nodes all of them select) | union = ["a", "b"]
                  fix = ["x", "z"] (held at 0), drive = {z = -1.0} (u_z = -1 x U(t)), linear = "x"
                  (the drive's weight grows linearly from 0 to its value across the group along x)
@@ -39,7 +39,7 @@ _PARAMS = {p["name"]: p for p in PARAMETERS}
 # Cube-only parameters: a specimen says the same with its groups.
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
-_GROUP_KEYS = {"face", "plane", "box", "point", "union", "fix", "drive", "linear"}
+_GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
 _MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control"}
 
 
@@ -74,13 +74,14 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
         at = nodes.lo[a] if face[1] == "-" else nodes.hi[a]
         sel &= np.abs(nodes.x[:, a] - at) <= nodes.tol
         chosen = True
-    if "plane" in spec:
-        plane = spec["plane"]
-        if not (isinstance(plane, dict) and len(plane) == 1 and next(iter(plane)) in AXES):
-            raise where(f"{key}.plane", f"must be one coordinate, e.g. {{x = 0.1}} (got {plane!r})")
-        (axis, at), = plane.items()
-        sel &= np.abs(nodes.x[:, AXES[axis]] - number(at, where, f"{key}.plane", positive=False)) <= nodes.tol
-        chosen = True
+    for kind, count, example in (("plane", 1, "{x = 0.1}"), ("line", 2, "{x = 0.1, z = 0.0}")):
+        if kind in spec:  # the nodes whose `count` coordinates are those given
+            c = spec[kind]
+            if not (isinstance(c, dict) and len(c) == count and all(a in AXES for a in c)):
+                raise where(f"{key}.{kind}", f"must be {count} coordinate(s), e.g. {example} (got {c!r})")
+            for axis, at in c.items():
+                sel &= np.abs(nodes.x[:, AXES[axis]] - number(at, where, f"{key}.{kind}", positive=False)) <= nodes.tol
+            chosen = True
     if "box" in spec:
         box = spec["box"]
         if not (isinstance(box, dict) and set(box) == {"min", "max"}):
@@ -98,7 +99,7 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
         sel[k] = True
         chosen = True
     if not chosen:
-        raise where(key, "needs a selector: face, plane, box, point or union")
+        raise where(key, "needs a selector: face, plane, line, box, point or union")
     ids = np.flatnonzero(sel)
     if len(ids) == 0:
         raise where(key, "selects no node of the specimen")

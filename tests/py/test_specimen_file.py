@@ -79,6 +79,18 @@ def test_shapes_cut_what_they_say():
     assert np.array_equal(width, width[::-1]) and width[n[2] // 2] == width.min()  # narrowest at mid-height
 
 
+def test_a_line_is_two_coordinates():
+    """line = {x, z}: the nodes of the beam's support line, as face z- and plane x together."""
+    data = example("beam_3pb")
+    as_line = dict(data["groups"]["left"], line={"x": 0.05, "z": 0.0})
+    del as_line["face"], as_line["plane"]
+    a = SpecimenTest.of(**data).build.groups["left"]
+    b = SpecimenTest.of(**dict(data, groups=dict(data["groups"], left=as_line))).build.groups["left"]
+    assert len(a) == 6 and np.array_equal(a, b)  # 6 nodes across the thickness of 5 modules
+    with pytest.raises(SpecimenError, match=r"groups.left.line: must be 2 coordinate\(s\)"):
+        SpecimenTest.of(**dict(data, groups=dict(data["groups"], left={"line": {"x": 0.05}, "fix": ["z"]})))
+
+
 def _column(shape: dict) -> dict:
     """A column 0.12 m high on a roller base (z held, pinned at two points)
     squeezed by a platen driven down, free laterally: uniaxial compression,
