@@ -28,6 +28,7 @@ The material, and why:
     /usr/bin/python3 scripts/gregoire2013.py predict --eps-p E --out results/beams/gregoire2013 [--seeds 6] [--jobs 2]
     /usr/bin/python3 scripts/gregoire2013.py uniform --eps-p E [--jobs 2]  # G_f CV 0: cases_cv0/
     /usr/bin/python3 scripts/gregoire2013.py curves [--out ...]      # curves/*.csv, curves.png
+    /usr/bin/python3 scripts/gregoire2013.py compare [--out ...]     # against measured.csv, after the predictions
 """
 import argparse
 import json
@@ -197,6 +198,35 @@ def curves(args) -> None:
     plots.save(fig, os.path.join(args.out, "curves.png"))
 
 
+def compare(args) -> None:
+    """comparison.md and comparison.png: the committed predictions against the
+    measured peak loads (measured.csv: D_mm, notch_ratio, peak_load_kN, sd_kN)."""
+    from ldem import plots  # noqa: F401  (the style)
+    import matplotlib.pyplot as plt
+
+    read = lambda name: {(float(r["D_mm"]), float(r["notch_ratio"])): r  # noqa: E731
+                         for r in io.read_table(os.path.join(args.out, name))}
+    predicted, measured = read("predictions.csv"), read("measured.csv")
+    lines = ["| D [mm] | notch / D | predicted [kN] (CV) | measured [kN] (sd) | predicted / measured |",
+             "|---|---|---|---|---|"]
+    fig, ax = plt.subplots()
+    for k, notch in enumerate((0.0, 0.2, 0.5)):
+        Ds = sorted(D for D, n in measured if n == notch)
+        p = [float(predicted[D, notch]["peak_load_kN"]) for D in Ds]
+        m = [float(measured[D, notch]["peak_load_kN"]) for D in Ds]
+        for D, a, b in zip(Ds, p, m):
+            lines.append(f"| {D:g} | {notch:g} | {a:.2f} ({float(predicted[D, notch]['cv']):.3f}) | {b:.2f} "
+                         f"({measured[D, notch]['sd_kN'] or '-'}) | {a / b:.3f} |")
+        ax.plot(Ds, m, "o-", color=f"C{k}", label=f"measured, notch {notch:g} D")
+        ax.plot(Ds, p, "s--", color=f"C{k}", mfc="none", label=f"ldem (predicted), notch {notch:g} D")
+    ax.set(xscale="log", yscale="log", xlabel="D [mm]", ylabel="peak load [kN]",
+           title="Grégoire et al. 2013: blind prediction against measurement")
+    ax.legend(fontsize=7)
+    plots.save(fig, os.path.join(args.out, "comparison.png"))
+    open(os.path.join(args.out, "comparison.md"), "w").write("\n".join(lines) + "\n")
+    print("\n".join(lines))
+
+
 def main(argv) -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="command", required=True)
@@ -213,8 +243,11 @@ def main(argv) -> None:
     c = sub.add_parser("curves")
     c.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     c.add_argument("--seeds", type=int, default=6)
+    k = sub.add_parser("compare")
+    k.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     args = ap.parse_args(argv)
-    {"calibrate": calibrate, "predict": predict, "uniform": uniform, "curves": curves}[args.command](args)
+    {"calibrate": calibrate, "predict": predict, "uniform": uniform, "curves": curves,
+     "compare": compare}[args.command](args)
 
 
 if __name__ == "__main__":
