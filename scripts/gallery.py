@@ -2,7 +2,7 @@
 folder is there already) and puts its curve and its crack picture side by side
 in doc/gallery/NAME.png.
 
-    /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1]
+    /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1] [--only NAME ...]
 """
 import argparse
 import glob
@@ -25,17 +25,22 @@ def main() -> None:
     ap.add_argument("--runs", default=os.path.join("out", "gallery"), help="run folders, one per example")
     ap.add_argument("--out", default=os.path.join(ROOT, "doc", "gallery"), help="where the pictures go")
     ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run")
+    ap.add_argument("--only", nargs="+", metavar="NAME", help="these examples only (e.g. beam_3pb)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     for path in sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml"))):
         name = os.path.splitext(os.path.basename(path))[0]
+        if args.only and name not in args.only:
+            continue
         run = os.path.join(args.runs, name)
         if not _done(run):
             ldem.run_cube(ldem.SpecimenTest.from_file(path, {"threads": args.threads}), out=run, progress=False)
         s = json.load(open(os.path.join(run, "summary.json")))
-        fig, axes = plt.subplots(1, 2, figsize=(12, 4.6), gridspec_kw={"width_ratios": [1, 1.15]})
-        for ax, picture in zip(axes, ("curve.png", "cracks.png")):
-            ax.imshow(matplotlib.image.imread(os.path.join(run, picture)))
+        pictures = [matplotlib.image.imread(os.path.join(run, p)) for p in ("curve.png", "cracks.png")]
+        ratios = [p.shape[1] / p.shape[0] for p in pictures]  # side by side at the same height
+        fig, axes = plt.subplots(1, 2, figsize=(4.2 * sum(ratios), 4.6), gridspec_kw={"width_ratios": ratios})
+        for ax, picture in zip(axes, pictures):
+            ax.imshow(picture)
             ax.axis("off")
         fig.suptitle(f"examples/{name}.toml: peak {s['peak_stress_MPa']:.3f} MPa, {s['n_bars']} bars, "
                      f"{s['wall_s']:.0f} s on {s['threads']} thread(s)", fontsize=10)
