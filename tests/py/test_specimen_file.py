@@ -241,10 +241,16 @@ def test_an_observer_that_returns_false_stops_the_run():
     assert strain[-1] >= 1e-4 > strain[-2] and len(seen) == len(strain)  # every observer saw the last row
 
 
-def test_ldem_run_restarts_bit_for_bit(cli, tmp_path):
+@pytest.mark.parametrize("servo", [False, True], ids=["displacement", "cmod_control"])
+def test_ldem_run_restarts_bit_for_bit(cli, tmp_path, servo):
     """ldem run --checkpoint-every, stopped (SIGTERM's way: an interrupt after the
-    second checkpoint), then --restart: the same curve.csv as a run that never stopped."""
+    second checkpoint), then --restart: the same curve.csv as a run that never
+    stopped; under CMOD control too (the servo's state is in checkpoint.npz)."""
     path = os.path.join(ROOT, "tests", "data", "beam_small.toml")
+    if servo:
+        text = open(path).read().replace("[measure]", '[loading]\nopening_rate = 0.02\n\n[measure]')
+        path = str(tmp_path / "servo.toml")
+        open(path, "w").write(text + 'control = "cmod"\n')
     common = ["--no-progress", "--no-plots", "--set", "threads=1", "--set", "final_strain=6e-4", "--set",
               "strain_rate=1.0"]
     r = cli("run", path, "--out", str(tmp_path / "whole"), *common)
