@@ -127,10 +127,11 @@ def run_case(job) -> str:
 
 
 def run_all(jobs: list, processes: int) -> None:
-    """The jobs whose case is not finished, `processes` at a time (one thread each)."""
+    """The jobs whose case is not finished, `processes` at a time (one thread
+    each), seed by seed: a series cut short has as many specimens of every beam."""
     import multiprocessing
 
-    todo = [j for j in jobs if not finished(case_dir(j[0], *j[1:4], j[5]))]
+    todo = sorted((j for j in jobs if not finished(case_dir(j[0], *j[1:4], j[5]))), key=lambda j: (j[3], j[1], j[2]))
     with multiprocessing.Pool(processes) as pool:
         for case in pool.imap_unordered(run_case, todo):
             s = json.load(open(os.path.join(case, "summary.json")))
