@@ -143,12 +143,14 @@ def predict(args) -> None:
     writes predictions.csv from all of them."""
     os.makedirs(args.out, exist_ok=True)
     series = [(D, notch) for D in (0.05, 0.1, 0.2) for notch in (0.0, 0.2, 0.5)]
-    run_all([(args.out, D, notch, seed, args.eps_p, 1.0) for D, notch in series
-             for seed in range(1, args.seeds + 1)], args.jobs)
+    if args.jobs > 0:
+        run_all([(args.out, D, notch, seed, args.eps_p, 1.0) for D, notch in series
+                 for seed in range(1, args.seeds + 1)], args.jobs)
     rows = []
     for D, notch in series:
-        loads = [json.load(open(os.path.join(case_dir(args.out, D, notch, seed), "summary.json")))["peak_stress_MPa"]
-                 * 1e3 for seed in range(1, args.seeds + 1)]  # the force [MN] -> kN
+        cases = [case_dir(args.out, D, notch, seed) for seed in range(1, args.seeds + 1)]
+        loads = [json.load(open(os.path.join(c, "summary.json")))["peak_stress_MPa"] * 1e3  # the force [MN] -> kN
+                 for c in cases if finished(c)]
         rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
                      "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
                      "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
@@ -236,7 +238,8 @@ def main(argv) -> None:
     p.add_argument("--eps-p", type=float, required=True)
     p.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
     p.add_argument("--seeds", type=int, default=6)
-    p.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each")
+    p.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each (0: only the table, "
+                                                        "from the cases finished)")
     u = sub.add_parser("uniform")
     u.add_argument("--eps-p", type=float, required=True)
     u.add_argument("--out", default=os.path.join("results", "beams", "gregoire2013"))
