@@ -151,6 +151,9 @@ def predict(args) -> None:
         cases = [case_dir(args.out, D, notch, seed) for seed in range(1, args.seeds + 1)]
         loads = [json.load(open(os.path.join(c, "summary.json")))["peak_stress_MPa"] * 1e3  # the force [MN] -> kN
                  for c in cases if finished(c)]
+        if not loads:
+            print(f"D {D * 1e3:g} mm, notch {notch:g}: no specimen finished")
+            continue
         rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
                      "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
                      "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
