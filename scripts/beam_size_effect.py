@@ -90,19 +90,19 @@ def main(folder: str) -> None:
     if not rows:
         sys.exit(f"{folder}: no finished case")
     lines, fits = table(rows, "Random G_f (CV 1), six specimens per beam")
-    uniform = cases(folder, "cases_cv0")
+    uniform, uniform_fits = cases(folder, "cases_cv0"), {}
     if uniform:
-        more, _ = table(uniform, "Uniform G_f (CV 0), one specimen per beam")
+        more, uniform_fits = table(uniform, "Uniform G_f (CV 0), one specimen per beam")
         lines += more
     open(os.path.join(folder, "size_effect.md"), "w").write("# Size effect of the beams\n\n" + "\n".join(lines))
     io.write_table(os.path.join(folder, "size_effect.csv"), [dict(r, Gf_cv=1.0) for r in rows] +
                    [dict(r, Gf_cv=0.0) for r in uniform], ["Gf_cv", "D_m", "notch", "seed", "F_N", "sigma_N_MPa"])
-    _figure(folder, rows, fits, uniform)
+    _figure(folder, rows, fits, uniform, uniform_fits)
     _cracks(folder)
     print("\n".join(lines))
 
 
-def _figure(folder, rows, fits, uniform):
+def _figure(folder, rows, fits, uniform, uniform_fits):
     from ldem import plots  # noqa: F401  (the style)
     import matplotlib.pyplot as plt
 
@@ -115,12 +115,12 @@ def _figure(folder, rows, fits, uniform):
         if flat:
             ax.plot([r["D_m"] * 1e3 for r in flat], [r["sigma_N_MPa"] for r in flat], "x", color=f"C{k}", ms=8,
                     label="uniform G_f" if k == 0 else None)
-        if notch in fits:
-            B, _, D0, _ = fits[notch]
-            d = np.geomspace(D.min() / 1.5, D.max() * 1.5, 50)
-            ax.plot(d, B * FT / 1e6 / np.sqrt(1 + d / (D0 * 1e3)), "-", color=f"C{k}", lw=1)
+        d = np.geomspace(D.min() / 1.5, D.max() * 1.5, 50)
+        for fit, style in ((fits.get(notch), "-"), (uniform_fits.get(notch), "--")):
+            if fit:
+                ax.plot(d, fit[0] * FT / 1e6 / np.sqrt(1 + d / (fit[2] * 1e3)), style, color=f"C{k}", lw=1)
     ax.set(xscale="log", yscale="log", xlabel="D [mm]", ylabel="sigma_N = 1.5 F S / (b D^2) [MPa]",
-           title="nominal strength against depth (lines: Bažant's law)")
+           title="nominal strength against depth (lines: Bažant's law; dashed: uniform G_f)")
     ax.legend()
     plots.save(fig, os.path.join(folder, "size_effect.png"))
 
