@@ -49,7 +49,7 @@ struct Drive {
 // with a = c / U the secant ratio of opening to drive displacement (unknown,
 // and the velocity v_max S'(t), until both have moved): the velocity that
 // opens the mouth at the program's rate, plus a correction of the lag at the
-// rate g [1/s]. v_max (the displacement control's rate) is the actuator's
+// rate g [1/s]. v_max (Drive::v0, displacement control's rate) is the actuator's
 // speed limit, reached smoothly. Why g = D_f / 2: with mass-proportional
 // damping every mode has 2 zeta_i omega_i = D_f, and the integral loop
 // U' = (g/a) (c* - c) around a mode that opens the mouth as c = a_t U crosses
@@ -59,13 +59,14 @@ struct Drive {
 struct Servo {
     double rate = 0;      // r [m/s]
     double gain = 0;      // g [1/s]
-    double vmax = 0;      // [m/s]
-    double rampTime = 0;  // [s]
     double U = 0, Uprev = 0;  // drive displacement at t_n and t_n-1 [m]
-    // Drive velocity at time t, from the opening c at t_n.
-    double velocity(double t, double opening) const;
+    // Drive velocity at time t, from the opening c at t_n; the actuator's
+    // speed limit v_max and the ramp are those of the displacement program.
+    double velocity(double t, double opening, const Drive& program) const;
     // U(n+1) from U(n) with the velocity at the middle of [t_n, t_n+1] (the program's ramp, there, to O(dt^3)).
-    void advance(double dt, double t, double opening) { Uprev = U, U += dt * velocity(t + 0.5 * dt, opening); }
+    void advance(double dt, double t, double opening, const Drive& program) {
+        Uprev = U, U += dt * velocity(t + 0.5 * dt, opening, program);
+    }
 };
 
 }  // namespace ldem

@@ -68,8 +68,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     if (openingControl() != (load_.openingRate > 0))
         throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
                                                      : "opening_rate needs a controlled probe (measure.control)");
-    servo_.rate = load_.openingRate, servo_.gain = 0.5 * Df_, servo_.vmax = drive_.v0;
-    servo_.rampTime = drive_.rampTime;
+    servo_.rate = load_.openingRate, servo_.gain = 0.5 * Df_;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
@@ -183,7 +182,7 @@ void Simulation::finishStep() {
     // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
     // Under opening control the servo moves U from state n (its opening is that of state n).
     const double tNext = time_ + dt_, Uback = driveBefore(), Unow = driveNow();
-    if (openingControl()) servo_.advance(dt_, time_, opening_);
+    if (openingControl()) servo_.advance(dt_, time_, opening_, drive_);
     const double Unext = openingControl() ? servo_.U : drive_.displacement(tNext);
     const double centred = 0.5 * (Unext - Uback);
     for (std::size_t k = 0; k < pre_.node.size(); ++k) {

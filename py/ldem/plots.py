@@ -44,8 +44,9 @@ def curve_figure(result, path: str) -> None:
     probes = [k for k in c if k.endswith("_m")]
     fig, axes = plt.subplots(1, 1 + bool(probes), figsize=(6.4 * (1 + 0.9 * bool(probes)), 4.8), squeeze=False)
     ax = axes[0, 0]
-    for name in probes:
-        axes[0, 1].plot(c[name] * 1e3, c["stress_MPa"], lw=1, label=name[:-2])
+    if probes:
+        for name in probes:
+            axes[0, 1].plot(c[name] * 1e3, c["stress_MPa"], lw=1, label=name[:-2])
         axes[0, 1].set(xlabel="probe [mm]", ylabel=STRESS_LABEL)
         axes[0, 1].legend()
     ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")

@@ -142,20 +142,22 @@ TEST(Specimen, ValidateNamesWhatIsWrong) {
 // at the program's rate with the secant ratio, the lag corrected at rate g, the
 // actuator's limit, and the smooth start.
 TEST(Servo, OpensAtTheProgramsRateWithinTheActuatorsLimit) {
+    Drive program;  // the actuator: its speed limit and its ramp
+    program.v0 = 2e-3, program.rampTime = 0.01;
     Servo s;
-    s.rate = 1e-3, s.gain = 50, s.vmax = 2e-3, s.rampTime = 0.01;
+    s.rate = 1e-3, s.gain = 50;
     s.U = 1e-5;
-    const double t = 0.1, onProgram = s.rate * (t - 0.5 * s.rampTime);  // c*(t) past the ramp
-    EXPECT_DOUBLE_EQ(s.velocity(t, onProgram), s.rate / (onProgram / s.U));  // r / a, a = c/U
+    const double t = 0.1, onProgram = s.rate * (t - 0.5 * program.rampTime);  // c*(t) past the ramp
+    EXPECT_DOUBLE_EQ(s.velocity(t, onProgram, program), s.rate / (onProgram / s.U));  // r / a, a = c/U
     const double behind = onProgram - 1e-6;  // lagging by 1 um: g x 1 um more opening rate
-    EXPECT_DOUBLE_EQ(s.velocity(t, behind), (s.rate + s.gain * 1e-6) / (behind / s.U));
+    EXPECT_DOUBLE_EQ(s.velocity(t, behind, program), (s.rate + s.gain * 1e-6) / (behind / s.U));
     s.U = 1e-3;  // a tiny ratio: the demand exceeds the actuator's speed, which caps it
-    EXPECT_DOUBLE_EQ(s.velocity(t, onProgram), s.vmax);
-    EXPECT_DOUBLE_EQ(s.velocity(t, 10 * onProgram), -s.vmax);  // the mouth far ahead: back off, as fast as it can
+    EXPECT_DOUBLE_EQ(s.velocity(t, onProgram, program), program.v0);
+    EXPECT_DOUBLE_EQ(s.velocity(t, 10 * onProgram, program), -program.v0);  // the mouth far ahead: back off
     s.U = 0;  // nothing moved yet: the ratio is unknown, the drive goes at the ramped limit
-    EXPECT_DOUBLE_EQ(s.velocity(0.5 * s.rampTime, 0.0), 0.5 * s.vmax);
-    EXPECT_DOUBLE_EQ(s.velocity(0.0, 0.0), 0.0);  // at rest at t = 0
-    s.advance(1e-4, 0.0, 0.0);                     // velocity at mid-step
+    EXPECT_DOUBLE_EQ(s.velocity(0.5 * program.rampTime, 0.0, program), 0.5 * program.v0);
+    EXPECT_DOUBLE_EQ(s.velocity(0.0, 0.0, program), 0.0);  // at rest at t = 0
+    s.advance(1e-4, 0.0, 0.0, program);                     // velocity at mid-step
     EXPECT_DOUBLE_EQ(s.Uprev, 0.0);
-    EXPECT_DOUBLE_EQ(s.U, 1e-4 * s.velocity(0.5e-4, 0.0));
+    EXPECT_DOUBLE_EQ(s.U, 1e-4 * s.velocity(0.5e-4, 0.0, program));
 }

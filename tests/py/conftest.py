@@ -8,6 +8,16 @@ import pytest
 ROOT = os.environ.get("LDEM_SOURCE_DIR", os.path.abspath(os.path.join(os.path.dirname(__file__), "..", "..")))
 
 
+def load_file(name: str, *path: str):
+    """A Python file of the repository (a script, a tool) as a module: ROOT/path..."""
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(name, os.path.join(ROOT, *path))
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
 def _build_python() -> str:
     """The python folder of the build under test: LDEM_BUILD_PYTHON (set by
     tests/CMakeLists.txt), else the first PYTHONPATH entry that holds ldem.

@@ -1,20 +1,14 @@
 """The notched-beam series (issue 13 items 5 and 6): the beams of
 scripts/gregoire2013.py are the paper's geometry, and scripts/beam_size_effect.py
 recovers Bažant's law from points that follow it."""
-import importlib.util
-import os
-
 import numpy as np
 import pytest
 
-from conftest import ROOT
+from conftest import load_file
 
 
 def script(name: str):
-    spec = importlib.util.spec_from_file_location(name, os.path.join(ROOT, "scripts", name + ".py"))
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    return load_file(name, "scripts", name + ".py")
 
 
 def test_bazant_s_law_is_recovered_from_points_on_it():

@@ -4,7 +4,6 @@ thread, must give exactly the golden summary, energies and curve (bitwise), and
 2 and 3 threads exactly the same curve on a shorter run (past the peak,
 with bars broken). A change of the physics updates the golden files in the same
 commit, with the reason in its message (README, Tests)."""
-import importlib.util
 import json
 import os
 
@@ -12,11 +11,9 @@ import numpy as np
 import pytest
 
 import ldem
-from conftest import ROOT
+from conftest import load_file
 
-_spec = importlib.util.spec_from_file_location("golden_update", os.path.join(ROOT, "tests", "golden", "update.py"))
-golden = importlib.util.module_from_spec(_spec)
-_spec.loader.exec_module(golden)
+golden = load_file("golden_update", "tests", "golden", "update.py")
 
 # Mean strains of the shorter runs: past the peak (uniform 1.64e-4, triangular
 # 1.69e-4), 134 and 112 bars broken; 9888 and 15714 steps.

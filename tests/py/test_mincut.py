@@ -1,6 +1,4 @@
 """The cheapest cut: exact against brute force and an LP, bounded by plane cuts."""
-import importlib.util
-import os
 from types import SimpleNamespace
 
 import numpy as np
@@ -9,15 +7,12 @@ from scipy import sparse
 from scipy.optimize import linprog
 
 import ldem
-from conftest import ROOT
+from conftest import load_file
 
 try:
     from ldem.mincut import cheapest_cut
 except ImportError:  # not staged in build/python until the next build: the source
-    _spec = importlib.util.spec_from_file_location("_mincut", os.path.join(ROOT, "py", "ldem", "mincut.py"))
-    _mincut = importlib.util.module_from_spec(_spec)
-    _spec.loader.exec_module(_mincut)
-    cheapest_cut = _mincut.cheapest_cut
+    cheapest_cut = load_file("_mincut", "py", "ldem", "mincut.py").cheapest_cut
 
 # threads=1: building a Simulation with several threads on busy cores is slow
 # (seconds) for no gain on these tiny lattices.
