@@ -4,6 +4,8 @@ into the tables of the reference study (LDEM_SPEC section 6).
 
     ldem study size-effect --out DIR [--sizes 0.12,0.24] [--seeds 6] [--loads uniform,triangular] [--jobs J]
     ldem study damping     --out DIR [--size 0.96] [--zetas 0.02,2]
+    ldem study mesh        --out DIR [--sizes 0.48,0.72,0.96] [--modules 0.04,0.06,0.08,0.12] [--reference DIR]
+    ldem study refinement  --out DIR [--sizes 0.12,0.24] [--L0s 0.02,0.01] [--corr-lengths 0,0.02]
 
 Modules, each importing only those listed before it:
   cases        case names and folders, what is finished, one case run into its folder
@@ -11,6 +13,10 @@ Modules, each importing only those listed before it:
   executors    running the unfinished cases: in turn, in processes, on dask
   size_effect  the size-effect study: runs, tables, fractal.json, report
   damping      the damping study
+  mesh         coarse modules with the study's criterion against the fine lattice (laws, cases)
+  mesh_tables  its tables beside the fine lattice, and the verdict
+  mesh_report  its figures and report.md
+  refinement   the same cubes with finer modules
   command      the `ldem study` command line
 """
 from ..io import read_table as read_csv, write_table as write_csv  # noqa: F401
@@ -19,6 +25,7 @@ from .cases import (case_dir, case_name, damping_tests, is_finished, load_case, 
 from .executors import run_cases  # noqa: F401
 from .size_effect import STUDY_SIZES, run_size_effect  # noqa: F401
 from .damping import run_damping  # noqa: F401
+from . import mesh, mesh_tables, refinement  # noqa: F401
 from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
                      fit_fractal, fractal_fits, mean_cv)
 from ..curves import mean_curve, mean_curve_peak  # noqa: F401

@@ -145,6 +145,15 @@ def load_curves(out: str, tests: Sequence[CubeTest]) -> Dict[tuple, List[dict]]:
     return groups
 
 
+def read_discussion(out: str) -> str:
+    """The hand-written discussion.md of study folder out ("" if there is none)."""
+    path = os.path.join(out, "discussion.md")
+    if not os.path.exists(path):
+        return ""
+    with open(path) as f:
+        return f.read()
+
+
 def load_case(out: str, test: CubeTest):
     """The finished case of test in study folder out, as ldem.report.Case."""
     from ..report import Case

@@ -1,8 +1,9 @@
-"""`ldem study size-effect` and `ldem study damping`: options, input checks,
-the printed summary."""
+"""`ldem study size-effect`, `damping`, `mesh` and `refinement`: options,
+input checks, the printed summary."""
 from __future__ import annotations
 
 import argparse
+import os
 import time
 from typing import List, Sequence
 
@@ -11,6 +12,8 @@ from ..cube import CubeTest, settings
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
+from .mesh import COARSE_MODULES, MESH_SIZES, VARIANTS, run_mesh
+from .refinement import CORR_LENGTHS, REFINEMENT, refinement_tests, run_refinement
 from .size_effect import STUDY_SIZES, run_size_effect
 
 
@@ -103,6 +106,65 @@ def cmd_damping(args) -> int:
     return 0
 
 
+def _run_options(args) -> dict:
+    return {"jobs": args.jobs, "scheduler": args.scheduler, "progress": False if args.no_progress else None}
+
+
+def _seeds(args) -> int:
+    if args.seeds < 1:
+        raise ValueError(f"--seeds must be at least 1 (got {args.seeds})")
+    return args.seeds
+
+
+def cmd_mesh(args) -> int:
+    variants = [v.strip() for v in args.variants.split(",") if v.strip()]
+    for v in variants:
+        if v not in VARIANTS:
+            raise ValueError(f"unknown variant '{v}' (expected some of {', '.join(VARIANTS)})")
+    for ref in args.reference:
+        if not os.path.isdir(os.path.join(ref, "cases")):
+            raise ValueError(f"--reference {ref}: not a study folder (no cases/ in it)")
+    common = _common(args)
+    for name in ("L0", "eps_p", "Gf_mean", "Gf_cv", "c_a"):
+        if name in common:
+            raise ValueError(f"--set {name}: the mesh study sets it (from the criterion)")
+    table = run_mesh(args.out, _floats(args.sizes, "--sizes"), _floats(args.modules, "--modules"), variants,
+                     _loads(args.loads), _seeds(args), args.reference, run=not args.report_only,
+                     report=not args.no_report, common=common, fmt=args.figure_format, **_run_options(args))
+    print(f"mesh study: wrote {args.out}/laws.csv, cases.csv, summary.csv"
+          + ("" if args.no_report else ", report.md and figures"))
+    for t in table:
+        print(f"  {t['load']:10s} {t['size_m']:.2f} m, L {t['module_m']:.3f} m, {t['variant']:9s}: "
+              f"peak {t['peak_stress_MPa_mean']:.3f} MPa" + (f" ({t['peak_vs_fine']:.3f} of fine)"
+                                                              if t["peak_vs_fine"] != "" else "")
+              + ("" if t["U_ratio_mean"] == "" else f", U_num/U_min {t['U_ratio_mean']:.3f}")
+              + ("" if t["U_vs_fine"] == "" else f" ({t['U_vs_fine']:.3f} of fine)"))
+    return 0
+
+
+def cmd_refinement(args) -> int:
+    sizes = _floats(args.sizes, "--sizes")
+    grid = {s: (tuple(_floats(args.L0s, "--L0s")) if args.L0s else REFINEMENT.get(s, ())) for s in sizes}
+    for s, modules in grid.items():
+        if not modules:
+            raise ValueError(f"no default modules for a {s:g} m cube: give --L0s")
+    common = _common(args)
+    if "L0" in common or "corr_length" in common:
+        raise ValueError("--set L0 / corr_length: the refinement study sets them (use --L0s, --corr-lengths)")
+    tests = refinement_tests(grid, _floats(args.corr_lengths, "--corr-lengths"), _loads(args.loads),
+                             _seeds(args), **common)
+    _check_tests(tests)
+    table = run_refinement(tests, args.out, run=not args.report_only, report=not args.no_report,
+                           fmt=args.figure_format, **_run_options(args))
+    print(f"refinement study: wrote {args.out}/cases.csv, summary.csv"
+          + ("" if args.no_report else ", report.md and refinement.png"))
+    for t in table:
+        print(f"  {t['load']:10s} {t['size_m']:.2f} m, L0 {t['module_m']:g} m, l_c {t['corr_length_m']:g} m: "
+              f"peak {t['peak_stress_MPa_mean']:.3f} MPa at {t['strain_at_peak_mean']:.3e}"
+              + ("" if t["U_ratio_mean"] == "" else f", U_num/U_min {t['U_ratio_mean']:.3f}"))
+    return 0
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="the size-effect and damping studies of the reference paper",
                        description="Runs many cube tests (resumable, in parallel) and aggregates them.")
@@ -139,3 +201,34 @@ def add_parser(sub) -> None:
     d.add_argument("--seed", type=int, default=1, help="the random specimen")
     d.add_argument("--zetas", default="0.02,2", help="damping ratios on the fundamental mode (above 1: overcritical)")
     d.set_defaults(func=cmd_damping)
+
+    m = kinds.add_parser("mesh", help="large cubes with coarse modules and the study's criterion, "
+                         "against the fine lattice", formatter_class=HelpFormatter,
+                         description="Fine cubes of side L give the law of a coarse module of side L "
+                                     "(ldem/study/mesh.py); coarse runs of each variant against the fine lattice.")
+    common(m)
+    m.add_argument("--sizes", default=",".join(f"{b:g}" for b in MESH_SIZES), help="cube sides to predict [m]")
+    m.add_argument("--modules", default=",".join(f"{b:g}" for b in COARSE_MODULES), help="coarse module sides L [m]")
+    m.add_argument("--variants", default=",".join(VARIANTS),
+                   help="plain: the fine law; law: eps_p and CV(G_f) from the fine cube of side L; "
+                        "c_a: the corrected c_a only; criterion: both")
+    m.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
+    m.add_argument("--reference", action="append", default=[], metavar="DIR",
+                   help="a size-effect study folder whose finished fine cases are used instead of running "
+                        "them (repeatable)")
+    m.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
+    m.set_defaults(func=cmd_mesh)
+
+    r = kinds.add_parser("refinement", help="the same cubes with modules finer than the study's",
+                         formatter_class=HelpFormatter)
+    common(r)
+    r.set_defaults(loads="uniform")
+    r.add_argument("--sizes", default=",".join(f"{b:g}" for b in REFINEMENT), help="cube sides [m]")
+    r.add_argument("--L0s", default="", metavar="L0,...",
+                   help="module sides for every size (default: 0.02,0.01,0.0075,0.005 for 0.12 m; "
+                        "0.02,0.01,0.005 for 0.24 m)")
+    r.add_argument("--corr-lengths", dest="corr_lengths", default=",".join(f"{x:g}" for x in CORR_LENGTHS),
+                   help="correlation lengths of G_f [m] (0: one draw per bar)")
+    r.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
+    r.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
+    r.set_defaults(func=cmd_refinement)

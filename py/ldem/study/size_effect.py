@@ -9,7 +9,7 @@ from typing import Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
-from .cases import load_case, load_curves
+from .cases import load_case, load_curves, read_discussion
 from .executors import run_cases
 from .tables import CASE_COLUMNS, SUMMARY_COLUMNS, aggregate, case_row, fractal_fits
 
@@ -37,11 +37,7 @@ def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, f
     into the same folder, and discussion.md (hand-written) if there is one."""
     from .. import report
 
-    damping_csv, discussion = os.path.join(out, "damping.csv"), os.path.join(out, "discussion.md")
-    text = None
-    if os.path.exists(discussion):
-        with open(discussion) as f:
-            text = f.read()
+    damping_csv = os.path.join(out, "damping.csv")
     report.size_effect_report(out, [load_case(out, t) for t in tests], rows, table, fits,
                               damping_rows=io.read_table(damping_csv) if os.path.exists(damping_csv) else None,
-                              discussion=text, fmt=fmt)
+                              discussion=read_discussion(out) or None, fmt=fmt)

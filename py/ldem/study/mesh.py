@@ -1,0 +1,214 @@
+"""The mesh study (issue 15): large cubes computed with coarse modules of side
+L, each carrying the law that the study's "tentative criterion" gives for L,
+against the fine lattice (L0 = 0.02 m) of the size-effect study.
+
+The criterion (LDEM_SPEC section 6): a module of side L carries the
+stress-strain law of a specimen of side L, with the fracture-area coefficient
+corrected by the diffuse cracking measured at that size,
+c_a(L) = c_a x E[U_num/U_min](L). The law of a coarse bar is the study's
+triangle, fixed by eps_p, the G_f field and c_a; `criterion_law` maps the
+fine cubes of side L (uniform load, six seeds, to separation) onto them:
+
+    eps_p(L)   = mean peak stress(L) / E        a coarse bar starts to soften at
+                                                the stress where a fine cube of
+                                                its size peaks (a fine bar at
+                                                E eps_p: identity at L = L0)
+    E[G_f](L)  = E[G_f]                         the material's energy per unit
+                                                area; the size dependence of
+                                                the energy goes through c_a
+    CV(G_f)(L) = CV(U_num)(L)                   a coarse bar's energy scatters
+                                                as the energy to split a fine
+                                                cube of its size
+    c_a(L)     = c_a x E[U_num/U_min](L)        the study's correction
+
+The strain at the peak and the CV of the peak are reported, not mapped: the
+bar is linear with the material's E up to eps_p (matching the peak stress
+fixes eps_p; matching its strain too would need another E), and eps_p is not
+random in the model. Values are rounded to 4 significant digits.
+
+Variants (the ablation): plain (the fine law on the coarse mesh), law (eps_p
+and CV(G_f) only), c_a (the corrected c_a only), criterion (all)."""
+from __future__ import annotations
+
+import math
+import os
+from typing import Dict, List, Optional, Sequence
+
+from .. import io
+from ..cube import CubeTest
+from .cases import case_dir, is_finished, load_summary
+from .executors import run_cases
+from .mesh_report import write_mesh_report
+from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, summarize
+from .tables import CASE_COLUMNS, case_row, mean_cv
+
+MESH_SIZES = (0.48, 0.72, 0.96)      # the cubes predicted with coarse modules [m]
+COARSE_MODULES = (0.04, 0.06, 0.08, 0.12)
+UNIFORM_FINAL_STRAIN = 3.0           # a cube of a few modules separates late (0.04 m, seed 2: at a mean strain of 1.06)
+
+LAW_COLUMNS = ("module_m", "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean",
+               "strain_at_peak_cv", "U_ratio_mean", "U_ratio_cv", "eps_p", "Gf_mean", "Gf_cv", "c_a")
+MESH_CASE_COLUMNS = ("role", "variant", "module_m", "corr_length_m") + CASE_COLUMNS
+
+
+def _round(x: float, digits: int = 4) -> float:
+    return float(f"{x:.{digits}g}")
+
+
+def criterion_law(fine_rows: Sequence[dict], base: CubeTest) -> dict:
+    """The coarse bars' law for modules of side L from the rows (case_row) of
+    the fine uniform cubes of side L: the statistics it used and the law
+    (eps_p, Gf_mean, Gf_cv, c_a), as in the module's docstring."""
+    separated = [r for r in fine_rows if r["separated"] in (True, "True")]
+    if len(separated) < 2:
+        raise ValueError(f"{len(separated)} of the fine cubes of side {fine_rows[0]['size_m']:g} m separated: "
+                         "the criterion needs E[U_num/U_min] and its CV over at least two")
+    peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in fine_rows])
+    strain, strain_cv = mean_cv([r["strain_at_peak"] for r in fine_rows])
+    ratio, ratio_cv = mean_cv([r["U_ratio"] for r in separated])
+    return {"module_m": fine_rows[0]["size_m"], "seeds": len(fine_rows), "separated": len(separated),
+            "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain,
+            "strain_at_peak_cv": strain_cv, "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv,
+            "eps_p": _round(peak * 1e6 / base.E), "Gf_mean": base.Gf_mean, "Gf_cv": _round(ratio_cv),
+            "c_a": _round(base.c_a * ratio)}
+
+
+def variant_law(variant: str, law: dict, base: CubeTest) -> dict:
+    """The CubeTest fields a variant changes: none (plain), eps_p and G_f's
+    statistics (law), c_a (c_a), or all of them (criterion)."""
+    keys = {"plain": (), "law": ("eps_p", "Gf_mean", "Gf_cv"), "c_a": ("c_a",),
+            "criterion": ("eps_p", "Gf_mean", "Gf_cv", "c_a")}
+    if variant not in keys:
+        raise ValueError(f"unknown variant '{variant}' (expected one of {', '.join(VARIANTS)})")
+    return {k: law[k] for k in keys[variant] if law[k] != getattr(base, k)}
+
+
+def load_settings(load: str, reference: bool = False) -> dict:
+    """What a load changes in a case: triangular cubes stop past the peak;
+    uniform ones run to separation however late, except the fine references,
+    which keep the size-effect study's settings (they separate by 0.05)."""
+    if load == "triangular":
+        return {"final_strain": TRIANGULAR_FINAL_STRAIN}
+    return {} if reference else {"final_strain": UNIFORM_FINAL_STRAIN}
+
+
+def law_tests(modules: Sequence[float], seeds: int, **common) -> List[CubeTest]:
+    """The fine uniform cubes of side L (L0 = 0.02 m) the criterion reads."""
+    return [CubeTest(size=m, L0=FINE_L0, load="uniform", seed=k, **{**load_settings("uniform"), **common})
+            for m in modules for k in range(1, seeds + 1)]
+
+
+def fine_tests(sizes, loads, seeds: int, **common) -> List[CubeTest]:
+    return [CubeTest(size=s, L0=FINE_L0, load=ld, seed=k, **{**load_settings(ld, reference=True), **common})
+            for s in sizes for ld in loads for k in range(1, seeds + 1)]
+
+
+def _divides(part: float, whole: float) -> bool:
+    return math.isclose(whole / part, round(whole / part), rel_tol=0, abs_tol=1e-9)
+
+
+def check_grid(sizes: Sequence[float], modules: Sequence[float]) -> None:
+    """Before anything runs: each module side L a multiple of the fine L0 (its
+    law comes from a fine cube of side L), each size a multiple of each L."""
+    for m in modules:
+        if m <= 0 or not _divides(FINE_L0, m):
+            raise ValueError(f"module {m:g} m: the criterion reads a fine cube of that side, which must be a "
+                             f"positive multiple of L0 = {FINE_L0:g} m")
+        for s in sizes:
+            if not _divides(m, s):
+                raise ValueError(f"a {s:g} m cube cannot be cut into modules of {m:g} m")
+
+
+def coarse_tests(sizes, modules, variants, loads, seeds: int, laws: Dict[float, dict], **common) -> List[tuple]:
+    """(variant, test) for every coarse case; a variant whose law equals
+    another's (e.g. c_a when the correction is 1) is still its own case."""
+    base = CubeTest(**common)
+    out = []
+    check_grid(sizes, modules)
+    for s in sizes:
+        for m in modules:
+            for v in variants:
+                law = variant_law(v, laws[m], base)
+                out += [(v, CubeTest(size=s, L0=m, load=ld, seed=k, **{**load_settings(ld), **common, **law}))
+                        for ld in loads for k in range(1, seeds + 1)]
+    return out
+
+
+def _dirs(tests: Sequence[CubeTest], out: str, references: Sequence[str]) -> List[tuple]:
+    """(folder, found) per test: the first reference study holding it finished
+    (found True), else its folder in out."""
+    def where(t):
+        for ref in references:
+            if is_finished(case_dir(ref, t), t):
+                return case_dir(ref, t), True
+        return case_dir(out, t), False
+    return [where(t) for t in tests]
+
+
+def run_located(tests, out: str, references: Sequence[str] = (), run: bool = True, **kw) -> List[tuple]:
+    """(summary, folder) of each test, those not finished in a reference study
+    run in out (unless run is False: then summary None for a case not
+    finished yet)."""
+    dirs = _dirs(tests, out, references)
+    mine = [t for t, (_, found) in zip(tests, dirs) if not found]
+    if run and mine:
+        run_cases(mine, out, **kw)
+    return [(load_summary(d) if is_finished(d, t) else None, d) for t, (d, _) in zip(tests, dirs)]
+
+
+def mesh_row(role: str, variant: str, summary: dict, folder: str = "") -> dict:
+    """case_row with the case's role (fine, coarse, law), variant, module and
+    correlation length; `dir`, its folder, is not a column."""
+    p = summary["parameters"]
+    return {"role": role, "variant": variant, "module_m": p["L0"], "corr_length_m": p["corr_length"],
+            **case_row(summary), "dir": folder}
+
+
+def read_laws(out: str) -> Dict[float, dict]:
+    """laws.csv of study folder out: module side -> its law."""
+    return {r["module_m"]: r for r in io.read_table(os.path.join(out, "laws.csv"))}
+
+
+def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, **kw) -> Dict[float, dict]:
+    """Runs (or finds) the fine cubes of side L, writes laws.csv and returns L -> law."""
+    common = kw.pop("common")
+    base = CubeTest(**common)
+    tests = law_tests(modules, seeds, **common)
+    summaries = run_located(tests, out, references, run=run, **kw)
+    laws = {}
+    for m in modules:
+        rows = [case_row(s) for t, (s, _) in zip(tests, summaries) if s is not None and t.size == m]
+        if rows:
+            laws[m] = criterion_law(rows, base)
+    io.prepare_dir(out)
+    io.write_table(os.path.join(out, "laws.csv"), list(laws.values()), LAW_COLUMNS)
+    missing = [m for m in modules if m not in laws]
+    if missing:
+        raise ValueError(f"the fine cubes of side {', '.join(f'{m:g}' for m in missing)} m are not finished: "
+                         "run without --report-only first")
+    return laws
+
+
+def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIANTS, loads=("uniform", "triangular"),
+             seeds: int = 6, references: Sequence[str] = (), run: bool = True, report: bool = True,
+             common: Optional[dict] = None, fmt: str = "png", **kw) -> List[dict]:
+    """The whole study: the fine cubes of side L and their laws (laws.csv), the
+    fine references (found in `references`, size-effect study folders, or run
+    here), the coarse cases; cases.csv, summary.csv and (with report)
+    report.md with its figures. With run False nothing is computed: the
+    tables cover the finished cases. Returns the summary rows."""
+    common = dict(common or {})
+    check_grid(sizes, modules)
+    laws = run_laws(modules, seeds, out, references, run=run, common=common, **kw)
+    fine = fine_tests(sizes, loads, seeds, **common)
+    coarse = coarse_tests(sizes, modules, variants, loads, seeds, laws, **common)
+    summaries = run_located(fine + [t for _, t in coarse], out, references, run=run, **kw)
+    roles = [("fine", "fine")] * len(fine) + [("coarse", v) for v, _ in coarse]
+    rows = [mesh_row(r, v, s, d) for (r, v), (s, d) in zip(roles, summaries) if s is not None]
+    io.write_table(os.path.join(out, "cases.csv"), rows, MESH_CASE_COLUMNS)
+    table = summarize(rows)
+    io.write_table(os.path.join(out, "summary.csv"), table, SUMMARY_COLUMNS)
+    if report:
+        write_mesh_report(out, laws, table, rows, fmt)
+    return table
+

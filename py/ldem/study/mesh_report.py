@@ -1,0 +1,118 @@
+"""The mesh study's figures and report.md: the laws the criterion gives, the
+verdict, the table beside the fine lattice, the peak and U_num against the
+module size with the fine values drawn across, and crack pictures side by
+side."""
+from __future__ import annotations
+
+import os
+from typing import Dict
+
+from .. import io, plots
+from ..report import md_table, num_cell
+from .cases import load_slice, read_discussion
+from .mesh_tables import FINE_L0, PEAK_TOLERANCE, TRIANGULAR_FINAL_STRAIN, U_TOLERANCE, VARIANTS, verdict
+
+_STYLE = {"plain": "o--", "law": "s:", "c_a": "^:", "criterion": "D-"}
+
+
+def against_module_figure(table, column: str, ylabel: str, tolerance: float, path: str, loads) -> None:
+    """One panel per (load, size): the column's mean against the module size,
+    a line per variant; the fine lattice's value drawn across with the
+    issue's tolerance band."""
+    import matplotlib.pyplot as plt
+
+    sizes = sorted({t["size_m"] for t in table})
+    fig, axes = plt.subplots(len(loads), len(sizes), figsize=(4.4 * len(sizes), 3.6 * len(loads)), squeeze=False)
+    for row, load in zip(axes, loads):
+        for ax, size in zip(row, sizes):
+            group = [t for t in table if t["load"] == load and t["size_m"] == size and t[column] != ""]
+            fine = next((t[column] for t in group if t["variant"] == "fine"), None)
+            if fine is not None:
+                ax.axhline(fine, color="k", lw=1.2, label=f"fine, L0 = {FINE_L0:g} m")
+                ax.axhspan(fine * (1 - tolerance), fine * (1 + tolerance), color="0.85", zorder=0,
+                           label=f"fine ± {tolerance:.0%}")
+            for v in VARIANTS:
+                pts = sorted((t["module_m"], t[column]) for t in group if t["variant"] == v)
+                if pts:
+                    ax.plot(*zip(*pts), _STYLE[v], label=v)
+            ax.set(title=f"{size:g} m, {load}", xlabel="module L [m]", ylabel=ylabel)
+            ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=7)
+    fig.tight_layout()
+    plots.save(fig, path)
+
+
+def cracks_side_by_side(rows, size: float, module: float, load: str, path: str, seed: int = 1) -> bool:
+    """The central slice at the end: the fine lattice beside each variant of
+    one coarse module size (seed 1); False if a case is missing."""
+    import matplotlib.pyplot as plt
+
+    picks = [r for r in rows if r["load"] == load and r["size_m"] == size and r["seed"] == seed
+             and (r["role"] == "fine" or abs(r["module_m"] - module) < 1e-9)]
+    if not any(r["role"] == "fine" for r in picks) or len(picks) < 2:
+        return False
+    picks.sort(key=lambda r: (r["role"] != "fine", VARIANTS.index(r["variant"]) if r["variant"] in VARIANTS else 0))
+    fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.8), squeeze=False)
+    for ax, r in zip(axes[0], picks):
+        plots.draw_slice(ax, *load_slice(r["dir"]))
+        ax.set_title(f"{r['variant']}, L = {r['module_m']:g} m", fontsize=9)
+    fig.legend(handles=plots.state_handles(), loc="lower center", ncol=3, frameon=False)
+    fig.suptitle(f"{size:g} m cube, {load}, seed {seed}: central slice at the end", fontsize=11)
+    fig.tight_layout(rect=(0, 0.06, 1, 1))
+    plots.save(fig, path)
+    return True
+
+
+def _law_rows(laws: Dict[float, dict]):
+    return [[f"{m:g}", f"{w['peak_stress_MPa_mean']:.3f} ({w['peak_stress_MPa_cv']:.3f})",
+             f"{w['strain_at_peak_mean']:.3e} ({w['strain_at_peak_cv']:.3f})",
+             f"{w['U_ratio_mean']:.3f} ({w['U_ratio_cv']:.3f}), {w['separated']} of {w['seeds']}",
+             f"{w['eps_p']:.4g}", f"{w['Gf_mean']:g}", f"{w['Gf_cv']:.4g}", f"{w['c_a']:.4g}"] for m, w in laws.items()]
+
+
+def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, fmt: str = "png") -> None:
+    """report.md and its figures in out; discussion.md (hand-written), if
+    there is one, is appended."""
+    loads = list(dict.fromkeys(t["load"] for t in table))
+    figs = []
+    against_module_figure(table, "peak_stress_MPa_mean", "mean peak stress [MPa]", PEAK_TOLERANCE,
+                          os.path.join(out, f"peak_vs_module.{fmt}"), loads)
+    figs.append((f"peak_vs_module.{fmt}", "mean peak stress against the module size"))
+    if "uniform" in loads:
+        against_module_figure(table, "U_ratio_mean", "mean U_num / U_min", U_TOLERANCE,
+                              os.path.join(out, f"U_vs_module.{fmt}"), ["uniform"])
+        figs.append((f"U_vs_module.{fmt}", "mean U_num/U_min (at separation) against the module size"))
+    for load in loads:
+        name = f"cracks_0.96m_L0.06_{load}.{fmt}"
+        if cracks_side_by_side(rows, 0.96, 0.06, load, os.path.join(out, name)):
+            figs.append((name, f"crack pictures, fine and coarse (L = 0.06 m), {load}"))
+    v = verdict(table)
+    md = ["# Mesh objectivity: coarse modules with the study's criterion against the fine lattice", "",
+          "Generated by `ldem study mesh`; every number is read from `laws.csv`, `cases.csv` and `summary.csv`. "
+          f"Fine lattice: L0 = {FINE_L0:g} m (the size-effect study). Triangular cubes run to a mean strain of "
+          f"{TRIANGULAR_FINAL_STRAIN:g} (they do not separate): peak and its strain only.",
+          "", "## The law each module size gets (from the fine uniform cubes of side L)", "",
+          "eps_p = mean peak / E; E[G_f] unchanged; CV(G_f) = CV(U_num/U_min); c_a = 0.1385 x E[U_num/U_min] "
+          "(see `ldem/study/mesh.py` for the reasoning).", "",
+          md_table(["L [m]", "fine peak MPa (CV)", "strain at peak (CV)", "U_num/U_min (CV), separated", "eps_p",
+                    "E[G_f] N/m", "CV(G_f)", "c_a"], _law_rows(laws)),
+          "", "## Verdict at 0.96 m with L = 0.06 m (peak within 10 %, U_num within 20 % of the fine lattice)", ""]
+    md += [md_table(["load", "variant", "peak error", "within 10 %", "U_num error", "within 20 %"],
+                    [[x["load"], x["variant"], f"{100 * x['peak_error']:+.1f} %", "yes" if x["peak_ok"] else "NO",
+                      "-" if x["U_error"] == "" else f"{100 * x['U_error']:+.1f} %",
+                      "-" if x["U_ok"] == "" else ("yes" if x["U_ok"] else "NO")] for x in v])
+           if v else "(the 0.96 m cube with L = 0.06 m has not run yet)"]
+    md += ["", "## Every group beside the fine lattice", "",
+           md_table(["load", "size m", "L m", "variant", "seeds", "peak MPa (CV)", "/ fine", "strain at peak",
+                     "/ fine", "U_num/U_min (CV)", "/ fine", "clamped", "bars", "wall s", "speed-up"],
+                    [[t["load"], f"{t['size_m']:g}", f"{t['module_m']:g}", t["variant"], t["seeds"],
+                      f"{t['peak_stress_MPa_mean']:.3f} ({t['peak_stress_MPa_cv']:.3f})",
+                      num_cell(t["peak_vs_fine"], ".3f"), f"{t['strain_at_peak_mean']:.3e}",
+                      num_cell(t["strain_vs_fine"], ".3f"),
+                      "-" if t["U_ratio_mean"] == "" else f"{t['U_ratio_mean']:.3f} ({t['U_ratio_cv']:.3f})",
+                      num_cell(t["U_vs_fine"], ".3f"), f"{t['clamped_fraction']:.3f}", t["n_bars"],
+                      f"{t['wall_s_mean']:.1f}", num_cell(t["speedup"], ".0f")] for t in table]),
+           "", "## Figures", ""]
+    md += [f"![{cap}]({name})\n\n*{cap}*\n" for name, cap in figs]
+    md += ["", read_discussion(out)]
+    io.write_text(os.path.join(out, "report.md"), "\n".join(md) + "\n")

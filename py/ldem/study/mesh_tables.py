@@ -1,0 +1,73 @@
+"""The mesh study's tables: means and CVs per (load, size, module, variant,
+correlation length), each beside the fine lattice's, and the verdict of
+issue 15 (fine peak within 10 %, fine U_num within 20 %)."""
+from __future__ import annotations
+
+from typing import List, Sequence
+
+import numpy as np
+
+from .tables import mean_cv
+
+FINE_L0 = 0.02                       # the size-effect study's module [m]
+VARIANTS = ("plain", "law", "c_a", "criterion")
+TRIANGULAR_FINAL_STRAIN = 1e-3       # triangular cubes do not separate (issue 10): peak only, 7 to 14 x its strain
+GROUP = ("load", "size_m", "module_m", "corr_length_m", "variant")
+SUMMARY_COLUMNS = GROUP + (
+    "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv",
+    "U_ratio_mean", "U_ratio_cv", "clamped_fraction", "n_bars", "wall_s_mean", "peak_vs_fine", "strain_vs_fine",
+    "U_vs_fine", "speedup")
+PEAK_TOLERANCE, U_TOLERANCE = 0.10, 0.20   # issue 15's verdict
+
+
+def _group_stats(g: Sequence[dict]) -> dict:
+    peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in g])
+    strain, strain_cv = mean_cv([r["strain_at_peak"] for r in g])
+    sep = [r["U_ratio"] for r in g if r["separated"] in (True, "True") and r["U_ratio"] != ""]
+    ratio, ratio_cv = mean_cv(sep) if sep else ("", "")
+    return {"seeds": len(g), "separated": len(sep), "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv,
+            "strain_at_peak_mean": strain, "strain_at_peak_cv": strain_cv, "U_ratio_mean": ratio,
+            "U_ratio_cv": ratio_cv,
+            "clamped_fraction": float(np.mean([r["clamped_bars"] / r["n_bars"] for r in g])),
+            "n_bars": g[0]["n_bars"], "wall_s_mean": float(np.mean([r["wall_s"] for r in g]))}
+
+
+def _ratio(a, b):
+    return a / b if a != "" and b not in ("", 0) else ""
+
+
+def summarize(rows: Sequence[dict], reference: str = "fine") -> List[dict]:
+    """One row per group (GROUP), in the order met; each beside the group of
+    the same load, size and correlation length whose variant is `reference`
+    (the fine lattice; in a refinement study, the coarsest module): ratios of
+    peak, strain at peak and U_num/U_min, and the speed-up in wall time."""
+    groups = {}
+    for r in rows:
+        groups.setdefault(tuple(r[k] for k in GROUP), []).append(r)
+    table = [{**dict(zip(GROUP, key)), **_group_stats(g)} for key, g in groups.items()]
+    for t in table:
+        ref = next((f for f in table if f["variant"] == reference and all(
+            f[k] == t[k] for k in ("load", "size_m", "corr_length_m"))), None)
+        if ref is None:
+            t.update(peak_vs_fine="", strain_vs_fine="", U_vs_fine="", speedup="")
+            continue
+        t.update(peak_vs_fine=_ratio(t["peak_stress_MPa_mean"], ref["peak_stress_MPa_mean"]),
+                 strain_vs_fine=_ratio(t["strain_at_peak_mean"], ref["strain_at_peak_mean"]),
+                 U_vs_fine=_ratio(t["U_ratio_mean"], ref["U_ratio_mean"]),
+                 speedup=_ratio(ref["wall_s_mean"], t["wall_s_mean"]))
+    return table
+
+
+def verdict(table: Sequence[dict], size: float = 0.96, module: float = 0.06) -> List[dict]:
+    """Per load and variant at (size, module): the peak's and U_num's distance
+    from the fine lattice's and whether they are within issue 15's bounds."""
+    out = []
+    for t in table:
+        if abs(t["size_m"] - size) > 1e-9 or abs(t["module_m"] - module) > 1e-9 or t["peak_vs_fine"] == "":
+            continue
+        peak_err = t["peak_vs_fine"] - 1.0
+        u_err = t["U_vs_fine"] - 1.0 if t["U_vs_fine"] != "" else ""
+        out.append({"load": t["load"], "variant": t["variant"], "peak_error": peak_err,
+                    "peak_ok": abs(peak_err) <= PEAK_TOLERANCE, "U_error": u_err,
+                    "U_ok": (abs(u_err) <= U_TOLERANCE) if u_err != "" else ""})
+    return out

@@ -1,0 +1,153 @@
+"""The mesh study (issue 15): coarse lattices against fine ones, the
+criterion's mapping, and `ldem study mesh` / `refinement` end to end."""
+import os
+
+import numpy as np
+import pytest
+
+from conftest import run_cli
+
+import ldem
+from ldem.study import mesh, mesh_tables
+
+
+def _modulus(size, L0):
+    """E_app / E of a cube pulled uniformly below eps_p: the slope of the
+    second half of the stress-strain curve (past the smooth start)."""
+    result = ldem.CubeTest(size=size, L0=L0, final_strain=3e-5, threads=1).run()
+    assert result.curve["damaged_bars"][-1] == 0
+    e, s = result.curve["mean_strain"], result.curve["stress_MPa"] * 1e6
+    k = len(e) // 2
+    return np.polyfit(e[k:], s[k:], 1)[0] / ldem.CubeTest().E
+
+
+def test_a_coarse_and_a_fine_block_have_the_same_stiffness_up_to_the_surface_layer():
+    """Bars scale with their module (areas L^2, masses L^3): a block of n
+    modules has one stiffness per unit size whatever L, so 0.12 m at L = 0.04
+    and 0.24 m at L = 0.08 agree (measured: 3e-5). Across n the interior is
+    the same material; the surface layer (softer: no centre-to-centre bars
+    cross the surface) weighs 1/n, so 1/E_app is linear in 1/n and the fine
+    block (n = 12) is within 5 % of E. The coarse block's deficit is that
+    layer's and nothing else: n = 6 on the line through n = 3 and n = 12 within
+    0.5 % (measured 0.23 %; E_app = 0.823, 0.915, 0.966 E at n = 3, 6, 12)."""
+    e3 = _modulus(0.12, 0.04)
+    assert _modulus(0.24, 0.08) == pytest.approx(e3, rel=1e-3)
+    e6, e12 = _modulus(0.12, 0.02), _modulus(0.12, 0.01)
+    assert e3 < e6 < e12 < 1.0 and e12 > 0.95
+    line = 1 / e12 + (1 / e3 - 1 / e12) * (1 / 6 - 1 / 12) / (1 / 3 - 1 / 12)
+    assert 1 / e6 == pytest.approx(line, rel=5e-3)
+
+
+def _row(peak, strain, ratio, separated=True, size=0.06):
+    return {"size_m": size, "peak_stress_MPa": peak, "strain_at_peak": strain,
+            "separated": separated, "U_ratio": ratio if separated else ""}
+
+
+def test_the_criterion_maps_a_synthetic_fine_table_onto_its_law():
+    """eps_p = mean peak / E, E[G_f] unchanged, CV(G_f) = CV(U_num/U_min) over
+    the separated cubes (sample CV), c_a = 0.1385 E[U_num/U_min]; rounded to 4
+    digits. A cube that did not separate counts for the peak only."""
+    base = ldem.CubeTest()
+    rows = [_row(2.4, 2e-4, 1.2), _row(2.6, 3e-4, 1.0), _row(2.5, 2.5e-4, 1.4), _row(2.1, 1e-4, 0, separated=False)]
+    law = mesh.criterion_law(rows, base)
+    assert law["peak_stress_MPa_mean"] == pytest.approx(2.4)
+    assert law["eps_p"] == pytest.approx(2.4e6 / 3.5e10, rel=1e-4)
+    assert law["U_ratio_mean"] == pytest.approx(1.2) and law["separated"] == 3 and law["seeds"] == 4
+    assert law["Gf_cv"] == pytest.approx(0.2 / 1.2, rel=1e-3)   # sample std of 1.0, 1.2, 1.4 is 0.2
+    assert law["c_a"] == pytest.approx(0.1385 * 1.2, rel=1e-4) and law["Gf_mean"] == base.Gf_mean
+    # The fine law is its own fixed point: cubes peaking at E eps_p, splitting at U_min with CV 1.
+    same = mesh.criterion_law([_row(3.5e10 * 6.3e-5 / 1e6, 1e-4, r) for r in (1 - 1.0, 1.0, 1 + 1.0)], base)
+    assert (same["eps_p"], same["Gf_cv"], same["c_a"]) == (base.eps_p, base.Gf_cv, base.c_a)
+    with pytest.raises(ValueError, match="at least two"):
+        mesh.criterion_law([_row(2.4, 2e-4, 1.2), _row(2.4, 2e-4, 0, separated=False)], base)
+
+
+def test_each_variant_takes_its_part_of_the_law():
+    base = ldem.CubeTest()
+    law = {"eps_p": 7e-5, "Gf_mean": 100.0, "Gf_cv": 0.2, "c_a": 0.15}
+    assert mesh.variant_law("plain", law, base) == {}
+    assert mesh.variant_law("law", law, base) == {"eps_p": 7e-5, "Gf_cv": 0.2}    # Gf_mean unchanged
+    assert mesh.variant_law("c_a", law, base) == {"c_a": 0.15}
+    assert mesh.variant_law("criterion", law, base) == {"eps_p": 7e-5, "Gf_cv": 0.2, "c_a": 0.15}
+    with pytest.raises(ValueError, match="unknown variant"):
+        mesh.variant_law("better", law, base)
+
+
+def test_the_verdict_reads_the_distance_from_the_fine_lattice():
+    rows = [dict(role="fine", variant="fine", module_m=0.02, corr_length_m=0.0, load="uniform", size_m=0.96,
+                 peak_stress_MPa=2.0, strain_at_peak=1e-4, separated=True, U_ratio=1.4, clamped_bars=0, n_bars=10,
+                 wall_s=100.0),
+            dict(role="coarse", variant="criterion", module_m=0.06, corr_length_m=0.0, load="uniform", size_m=0.96,
+                 peak_stress_MPa=2.3, strain_at_peak=1e-4, separated=True, U_ratio=1.5, clamped_bars=1, n_bars=10,
+                 wall_s=4.0)]
+    table = mesh_tables.summarize(rows)
+    assert table[1]["speedup"] == pytest.approx(25.0) and table[1]["U_vs_fine"] == pytest.approx(1.5 / 1.4)
+    (v,) = mesh_tables.verdict(table)
+    assert v["peak_error"] == pytest.approx(0.15) and not v["peak_ok"] and v["U_ok"]
+
+
+def _results(out):
+    """summary.csv without the wall times."""
+    return [{k: v for k, v in r.items() if k not in ("wall_s_mean", "speedup")}
+            for r in ldem.study.read_csv(os.path.join(out, "summary.csv"))]
+
+
+def _case_folders(out):
+    return sorted(os.listdir(os.path.join(out, "cases")))
+
+
+def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
+    """Tiny cubes: the fine cubes of side 0.04 m give the law, the 0.08 m
+    cube runs fine (L0 = 0.02) and coarse (L = 0.04) with two variants; a
+    second call computes nothing, a lost case is computed again alone."""
+    out = str(tmp_path / "mesh")
+    args = ["study", "mesh", "--out", out, "--sizes", "0.08", "--modules", "0.04", "--seeds", "2", "--loads",
+            "uniform", "--variants", "plain,criterion", "--threads", "1", "--no-progress"]
+    first = run_cli(*args)
+    assert first.returncode == 0, first.stderr
+    names = _case_folders(out)
+    assert len(names) == 2 + 2 + 4      # law cubes, fine references, coarse cases
+    law = mesh.read_laws(out)[0.04]
+    assert any(f"eps_p{law['eps_p']:g}" in n for n in names)
+    table = {(r["module_m"], r["variant"]): r for r in ldem.study.read_csv(os.path.join(out, "summary.csv"))}
+    assert table[(0.02, "fine")]["peak_vs_fine"] == 1.0 and table[(0.04, "criterion")]["seeds"] == 2
+    assert os.path.exists(os.path.join(out, "report.md")) and os.path.exists(os.path.join(out, "peak_vs_module.png"))
+    before = _results(out)
+    again = run_cli(*args)
+    assert again.returncode == 0 and "2 of 2 cases already finished" in again.stdout   # the law cubes
+    assert "6 of 6 cases already finished" in again.stdout                                # fine and coarse
+    os.remove(os.path.join(out, "cases", names[-1], "summary.json"))
+    third = run_cli(*args, "--report-only")     # computes nothing: the tables of the finished cases
+    assert third.returncode == 0 and "already finished" not in third.stdout
+    assert len(ldem.study.read_csv(os.path.join(out, "cases.csv"))) == 5
+    fourth = run_cli(*args)
+    assert "5 of 6 cases already finished" in fourth.stdout
+    assert _results(out) == before    # the same seed gives the same specimen
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--variants", "plain,better"], "unknown variant 'better'"),
+    (["--modules", "0.05"], "module 0.05 m: the criterion reads a fine cube of that side"),
+    (["--modules", "0.08"], "a 0.12 m cube cannot be cut into modules of 0.08 m"),
+    (["--set", "c_a=0.2"], "--set c_a: the mesh study sets it"),
+    (["--reference", "/nonexistent"], "not a study folder"),
+])
+def test_bad_mesh_study_input_is_one_line(tmp_path, extra, message):
+    r = run_cli("study", "mesh", "--out", str(tmp_path / "m"), "--sizes", "0.12", "--seeds", "1", *extra)
+    assert r.returncode == 2 and message in r.stderr and len(r.stderr.strip().splitlines()) == 1
+
+
+def test_ldem_study_refinement_end_to_end(tmp_path):
+    """A 0.04 m cube at L0 = 0.02 and 0.01, per bar and with l_c = 0.02 m,
+    past the peak only (--set final_strain): the table compares each with
+    L0 = 0.02 and the same field."""
+    out = str(tmp_path / "ref")
+    r = run_cli("study", "refinement", "--out", out, "--sizes", "0.04", "--L0s", "0.02,0.01", "--seeds", "2",
+                "--corr-lengths", "0,0.02", "--set", "final_strain=0.002", "--threads", "1", "--no-progress")
+    assert r.returncode == 0, r.stderr
+    table = ldem.study.read_csv(os.path.join(out, "summary.csv"))
+    assert [(t["module_m"], t["corr_length_m"]) for t in table] == [(0.02, 0), (0.02, 0.02), (0.01, 0), (0.01, 0.02)]
+    assert all(t["seeds"] == 2 and t["separated"] == 0 for t in table) and table[0]["peak_vs_fine"] == 1.0
+    assert table[2]["peak_vs_fine"] == pytest.approx(table[2]["peak_stress_MPa_mean"] / table[0]["peak_stress_MPa_mean"],
+                                                     rel=1e-4)
+    assert os.path.exists(os.path.join(out, "refinement.png"))
