@@ -62,6 +62,20 @@ def test_the_criterion_maps_a_synthetic_fine_table_onto_its_law():
         mesh.criterion_law([_row(2.4, 2e-4, 1.2), _row(2.4, 2e-4, 0, separated=False)], base)
 
 
+def test_the_calibration_scales_eps_p_and_c_a_by_fine_over_coarse():
+    """On the calibration cube: eps_p x fine peak / coarse peak, c_a x fine
+    U_num/U_min / coarse U_num/U_min (separated specimens only)."""
+    base = ldem.CubeTest()
+    fine = [_row(2.4, 2e-4, 1.1), _row(2.6, 2e-4, 1.3)]
+    coarse = [_row(2.0, 2e-4, 2.0), _row(2.0, 2e-4, 2.4), _row(2.0, 2e-4, 0, separated=False)]
+    law = mesh.calibrated_law(fine, coarse, base)
+    assert law["calibration_peak_ratio"] == pytest.approx(1.25) and law["calibration_U_ratio"] == pytest.approx(1.2 / 2.2)
+    assert law["calibrated_eps_p"] == pytest.approx(6.3e-5 * 1.25, rel=1e-4)
+    assert law["calibrated_c_a"] == pytest.approx(0.1385 * 1.2 / 2.2, rel=1e-4)
+    with pytest.raises(ValueError, match="calibration cubes separated"):
+        mesh.calibrated_law(fine, coarse[2:], base)
+
+
 def test_each_variant_takes_its_part_of_the_law():
     base = ldem.CubeTest()
     law = {"eps_p": 7e-5, "Gf_mean": 100.0, "Gf_cv": 0.2, "c_a": 0.15}
@@ -69,6 +83,8 @@ def test_each_variant_takes_its_part_of_the_law():
     assert mesh.variant_law("law", law, base) == {"eps_p": 7e-5, "Gf_cv": 0.2}    # Gf_mean unchanged
     assert mesh.variant_law("c_a", law, base) == {"c_a": 0.15}
     assert mesh.variant_law("criterion", law, base) == {"eps_p": 7e-5, "Gf_cv": 0.2, "c_a": 0.15}
+    law.update(calibrated_eps_p=7.5e-5, calibrated_c_a=0.1)
+    assert mesh.variant_law("calibrated", law, base) == {"eps_p": 7.5e-5, "c_a": 0.1}   # CV(G_f) the material's
     with pytest.raises(ValueError, match="unknown variant"):
         mesh.variant_law("better", law, base)
 
@@ -98,30 +114,33 @@ def _case_folders(out):
 
 def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     """Tiny cubes: the fine cubes of side 0.04 m give the law, the 0.08 m
-    cube runs fine (L0 = 0.02) and coarse (L = 0.04) with two variants; a
-    second call computes nothing, a lost case is computed again alone."""
+    ones the calibration, the 0.12 m cube runs fine (L0 = 0.02) and coarse
+    (L = 0.04) with three variants; a second call computes nothing, a lost
+    case is computed again alone."""
     out = str(tmp_path / "mesh")
-    args = ["study", "mesh", "--out", out, "--sizes", "0.08", "--modules", "0.04", "--seeds", "2", "--loads",
-            "uniform", "--variants", "plain,criterion", "--threads", "1", "--no-progress"]
+    args = ["study", "mesh", "--out", out, "--sizes", "0.12", "--modules", "0.04", "--seeds", "2", "--loads",
+            "uniform", "--variants", "plain,criterion,calibrated", "--calibration-size", "0.08", "--threads", "1",
+            "--no-progress"]
     first = run_cli(*args)
     assert first.returncode == 0, first.stderr
     names = _case_folders(out)
-    assert len(names) == 2 + 2 + 4      # law cubes, fine references, coarse cases
+    assert len(names) == 2 + 2 + 2 + 2 + 6   # law cubes, calibration fine and coarse, fine references, coarse
     law = mesh.read_laws(out)[0.04]
     assert any(f"eps_p{law['eps_p']:g}" in n for n in names)
+    assert any(f"c_a{law['calibrated_c_a']:g}" in n for n in names)
     table = {(r["module_m"], r["variant"]): r for r in ldem.study.read_csv(os.path.join(out, "summary.csv"))}
     assert table[(0.02, "fine")]["peak_vs_fine"] == 1.0 and table[(0.04, "criterion")]["seeds"] == 2
     assert os.path.exists(os.path.join(out, "report.md")) and os.path.exists(os.path.join(out, "peak_vs_module.png"))
     before = _results(out)
     again = run_cli(*args)
-    assert again.returncode == 0 and "2 of 2 cases already finished" in again.stdout   # the law cubes
-    assert "6 of 6 cases already finished" in again.stdout                                # fine and coarse
+    assert again.returncode == 0 and "6 of 6 cases already finished" in again.stdout   # the law's cubes
+    assert "8 of 8 cases already finished" in again.stdout                                # fine and coarse
     os.remove(os.path.join(out, "cases", names[-1], "summary.json"))
     third = run_cli(*args, "--report-only")     # computes nothing: the tables of the finished cases
     assert third.returncode == 0 and "already finished" not in third.stdout
-    assert len(ldem.study.read_csv(os.path.join(out, "cases.csv"))) == 5
+    assert len(ldem.study.read_csv(os.path.join(out, "cases.csv"))) == 7
     fourth = run_cli(*args)
-    assert "5 of 6 cases already finished" in fourth.stdout
+    assert "7 of 8 cases already finished" in fourth.stdout
     assert _results(out) == before    # the same seed gives the same specimen
 
 
@@ -131,6 +150,7 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     (["--modules", "0.08"], "a 0.12 m cube cannot be cut into modules of 0.08 m"),
     (["--set", "c_a=0.2"], "--set c_a: the mesh study sets it"),
     (["--reference", "/nonexistent"], "not a study folder"),
+    (["--modules", "0.04", "--calibration-size", "0.12"], "must not be one of the cubes predicted"),
 ])
 def test_bad_mesh_study_input_is_one_line(tmp_path, extra, message):
     r = run_cli("study", "mesh", "--out", str(tmp_path / "m"), "--sizes", "0.12", "--seeds", "1", *extra)

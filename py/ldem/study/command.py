@@ -12,7 +12,7 @@ from ..cube import CubeTest, settings
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
-from .mesh import COARSE_MODULES, MESH_SIZES, VARIANTS, run_mesh
+from .mesh import CALIBRATION_SIZE, COARSE_MODULES, MESH_SIZES, VARIANTS, run_mesh
 from .refinement import CORR_LENGTHS, REFINEMENT, refinement_tests, run_refinement
 from .size_effect import STUDY_SIZES, run_size_effect
 
@@ -130,7 +130,8 @@ def cmd_mesh(args) -> int:
             raise ValueError(f"--set {name}: the mesh study sets it (from the criterion)")
     table = run_mesh(args.out, _floats(args.sizes, "--sizes"), _floats(args.modules, "--modules"), variants,
                      _loads(args.loads), _seeds(args), args.reference, run=not args.report_only,
-                     report=not args.no_report, common=common, fmt=args.figure_format, **_run_options(args))
+                     report=not args.no_report, common=common, fmt=args.figure_format,
+                     calibration_size=args.calibration_size, **_run_options(args))
     print(f"mesh study: wrote {args.out}/laws.csv, cases.csv, summary.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for t in table:
@@ -211,11 +212,14 @@ def add_parser(sub) -> None:
     m.add_argument("--modules", default=",".join(f"{b:g}" for b in COARSE_MODULES), help="coarse module sides L [m]")
     m.add_argument("--variants", default=",".join(VARIANTS),
                    help="plain: the fine law; law: eps_p and CV(G_f) from the fine cube of side L; "
-                        "c_a: the corrected c_a only; criterion: both")
+                        "c_a: the corrected c_a only; criterion: both; calibrated: eps_p and c_a from the "
+                        "coarse and the fine lattice on the calibration cube")
     m.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
     m.add_argument("--reference", action="append", default=[], metavar="DIR",
                    help="a size-effect study folder whose finished fine cases are used instead of running "
                         "them (repeatable)")
+    m.add_argument("--calibration-size", dest="calibration_size", type=float, default=CALIBRATION_SIZE,
+                   help="the cube on which the calibrated variant measures the coarse lattice against the fine [m]")
     m.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
     m.set_defaults(func=cmd_mesh)
 

@@ -27,7 +27,17 @@ fixes eps_p; matching its strain too would need another E), and eps_p is not
 random in the model. Values are rounded to 4 significant digits.
 
 Variants (the ablation): plain (the fine law on the coarse mesh), law (eps_p
-and CV(G_f) only), c_a (the corrected c_a only), criterion (all)."""
+and CV(G_f) only), c_a (the corrected c_a only), criterion (all); and a
+proposal, calibrated: the coarse lattice's own peak and cracking measured on
+a cube of CALIBRATION_SIZE (never a target), against the fine lattice's,
+
+    eps_p'(L) = eps_p x fine peak / coarse peak          (of the 0.24 m cube)
+    c_a'(L)   = c_a x fine U_num/U_min / coarse U_num/U_min
+    CV(G_f)   = the material's
+
+(`calibrated_law`), so that what the coarse mesh adds or loses by itself
+(brittler bars clamped, a softer surface layer, cracking of its own) is
+measured instead of assumed to vanish."""
 from __future__ import annotations
 
 import math
@@ -40,6 +50,7 @@ from .cases import case_dir, is_finished, load_summary
 from .executors import run_cases
 from .mesh_report import write_mesh_report
 from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, summarize
+CALIBRATION_SIZE = 0.24              # the calibrated variant's cube: fine results exist, never a target [m]
 from .tables import CASE_COLUMNS, case_row, mean_cv
 
 MESH_SIZES = (0.48, 0.72, 0.96)      # the cubes predicted with coarse modules [m]
@@ -47,7 +58,8 @@ COARSE_MODULES = (0.04, 0.06, 0.08, 0.12)
 UNIFORM_FINAL_STRAIN = 3.0           # a cube of a few modules separates late (0.04 m, seed 2: at a mean strain of 1.06)
 
 LAW_COLUMNS = ("module_m", "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean",
-               "strain_at_peak_cv", "U_ratio_mean", "U_ratio_cv", "eps_p", "Gf_mean", "Gf_cv", "c_a")
+               "strain_at_peak_cv", "U_ratio_mean", "U_ratio_cv", "eps_p", "Gf_mean", "Gf_cv", "c_a",
+               "calibration_peak_ratio", "calibration_U_ratio", "calibrated_eps_p", "calibrated_c_a")
 MESH_CASE_COLUMNS = ("role", "variant", "module_m", "corr_length_m") + CASE_COLUMNS
 
 
@@ -73,14 +85,31 @@ def criterion_law(fine_rows: Sequence[dict], base: CubeTest) -> dict:
             "c_a": _round(base.c_a * ratio)}
 
 
+def calibrated_law(fine_rows: Sequence[dict], coarse_rows: Sequence[dict], base: CubeTest) -> dict:
+    """The calibrated variant's eps_p and c_a for one module size, from the
+    fine and the coarse (plain law) cubes of CALIBRATION_SIZE: ratios of their
+    mean peaks and of their mean U_num/U_min (separated specimens)."""
+    def means(rows):
+        sep = [r["U_ratio"] for r in rows if r["separated"] in (True, "True")]
+        if len(sep) < 2:
+            raise ValueError(f"{len(sep)} calibration cubes separated: the calibrated variant needs two")
+        return mean_cv([r["peak_stress_MPa"] for r in rows])[0], mean_cv(sep)[0]
+    (fine_peak, fine_u), (coarse_peak, coarse_u) = means(fine_rows), means(coarse_rows)
+    return {"calibration_peak_ratio": fine_peak / coarse_peak, "calibration_U_ratio": fine_u / coarse_u,
+            "calibrated_eps_p": _round(base.eps_p * fine_peak / coarse_peak),
+            "calibrated_c_a": _round(base.c_a * fine_u / coarse_u)}
+
+
 def variant_law(variant: str, law: dict, base: CubeTest) -> dict:
     """The CubeTest fields a variant changes: none (plain), eps_p and G_f's
-    statistics (law), c_a (c_a), or all of them (criterion)."""
+    statistics (law), c_a (c_a), all of them (criterion), or eps_p and c_a
+    from the calibration (calibrated)."""
     keys = {"plain": (), "law": ("eps_p", "Gf_mean", "Gf_cv"), "c_a": ("c_a",),
-            "criterion": ("eps_p", "Gf_mean", "Gf_cv", "c_a")}
+            "criterion": ("eps_p", "Gf_mean", "Gf_cv", "c_a"), "calibrated": ("calibrated_eps_p", "calibrated_c_a")}
     if variant not in keys:
         raise ValueError(f"unknown variant '{variant}' (expected one of {', '.join(VARIANTS)})")
-    return {k: law[k] for k in keys[variant] if law[k] != getattr(base, k)}
+    fields = {k: k.replace("calibrated_", "") for k in keys[variant]}
+    return {f: law[k] for k, f in fields.items() if law[k] != getattr(base, f)}
 
 
 def load_settings(load: str, reference: bool = False) -> dict:
@@ -169,37 +198,60 @@ def read_laws(out: str) -> Dict[float, dict]:
     return {r["module_m"]: r for r in io.read_table(os.path.join(out, "laws.csv"))}
 
 
-def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, **kw) -> Dict[float, dict]:
-    """Runs (or finds) the fine cubes of side L, writes laws.csv and returns L -> law."""
+def calibration_tests(modules, seeds: int, size: float = CALIBRATION_SIZE, **common) -> List[CubeTest]:
+    """The fine cubes of the calibration size, then the coarse ones (plain law) per module."""
+    return (fine_tests([size], ["uniform"], seeds, **common)
+            + [CubeTest(size=size, L0=m, load="uniform", seed=k, **{**load_settings("uniform"), **common})
+               for m in modules for k in range(1, seeds + 1)])
+
+
+def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, calibrate: bool = True,
+             calibration_size: float = CALIBRATION_SIZE, **kw) -> Dict[float, dict]:
+    """Runs (or finds) the fine cubes of side L (and, with calibrate, the
+    calibration cubes), writes laws.csv and returns L -> law."""
     common = kw.pop("common")
     base = CubeTest(**common)
     tests = law_tests(modules, seeds, **common)
-    summaries = run_located(tests, out, references, run=run, **kw)
+    cal = calibration_tests(modules, seeds, calibration_size, **common) if calibrate else []
+    found = [(t, case_row(s)) for t, (s, _) in zip(tests + cal, run_located(tests + cal, out, references, run=run,
+                                                                                **kw)) if s is not None]
     laws = {}
     for m in modules:
-        rows = [case_row(s) for t, (s, _) in zip(tests, summaries) if s is not None and t.size == m]
-        if rows:
-            laws[m] = criterion_law(rows, base)
+        fine = [r for t, r in found if t in tests and t.size == m]
+        if fine:
+            laws[m] = criterion_law(fine, base)
+        cal_fine = [r for t, r in found if t in cal and t.L0 == FINE_L0]
+        cal_coarse = [r for t, r in found if t in cal and t.L0 == m]
+        if m in laws and cal_fine and cal_coarse:
+            laws[m].update(calibrated_law(cal_fine, cal_coarse, base))
     io.prepare_dir(out)
     io.write_table(os.path.join(out, "laws.csv"), list(laws.values()), LAW_COLUMNS)
-    missing = [m for m in modules if m not in laws]
+    missing = [m for m in modules if m not in laws or (calibrate and "calibrated_c_a" not in laws[m])]
     if missing:
-        raise ValueError(f"the fine cubes of side {', '.join(f'{m:g}' for m in missing)} m are not finished: "
+        raise ValueError(f"the cubes that give the law of modules of {', '.join(f'{m:g}' for m in missing)} m "
+                         "are not finished: "
                          "run without --report-only first")
     return laws
 
 
 def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIANTS, loads=("uniform", "triangular"),
              seeds: int = 6, references: Sequence[str] = (), run: bool = True, report: bool = True,
-             common: Optional[dict] = None, fmt: str = "png", **kw) -> List[dict]:
+             common: Optional[dict] = None, fmt: str = "png", calibration_size: float = CALIBRATION_SIZE,
+             **kw) -> List[dict]:
     """The whole study: the fine cubes of side L and their laws (laws.csv), the
     fine references (found in `references`, size-effect study folders, or run
     here), the coarse cases; cases.csv, summary.csv and (with report)
     report.md with its figures. With run False nothing is computed: the
     tables cover the finished cases. Returns the summary rows."""
     common = dict(common or {})
+    calibrate = "calibrated" in variants
     check_grid(sizes, modules)
-    laws = run_laws(modules, seeds, out, references, run=run, common=common, **kw)
+    if calibrate:
+        check_grid([calibration_size], modules)
+        if any(math.isclose(calibration_size, s) for s in sizes):
+            raise ValueError(f"the calibration cube ({calibration_size:g} m) must not be one of the cubes predicted")
+    laws = run_laws(modules, seeds, out, references, run=run, calibrate=calibrate, calibration_size=calibration_size,
+                    common=common, **kw)
     fine = fine_tests(sizes, loads, seeds, **common)
     coarse = coarse_tests(sizes, modules, variants, loads, seeds, laws, **common)
     summaries = run_located(fine + [t for _, t in coarse], out, references, run=run, **kw)

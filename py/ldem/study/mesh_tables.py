@@ -10,7 +10,7 @@ import numpy as np
 from .tables import mean_cv
 
 FINE_L0 = 0.02                       # the size-effect study's module [m]
-VARIANTS = ("plain", "law", "c_a", "criterion")
+VARIANTS = ("plain", "law", "c_a", "criterion", "calibrated")
 TRIANGULAR_FINAL_STRAIN = 1e-3       # triangular cubes do not separate (issue 10): peak only, 7 to 14 x its strain
 GROUP = ("load", "size_m", "module_m", "corr_length_m", "variant")
 SUMMARY_COLUMNS = GROUP + (
