@@ -91,13 +91,14 @@ def test_each_variant_takes_its_part_of_the_law():
 
 def test_the_verdict_reads_the_distance_from_the_fine_lattice():
     rows = [dict(role="fine", variant="fine", module_m=0.02, corr_length_m=0.0, load="uniform", size_m=0.96,
-                 peak_stress_MPa=2.0, strain_at_peak=1e-4, separated=True, U_ratio=1.4, clamped_bars=0, n_bars=10,
-                 wall_s=100.0),
+                 peak_stress_MPa=2.0, strain_at_peak=1e-4, separated=True, U_ratio=1.4, clamped_bars=0, n_bars=1000,
+                 steps=300, wall_s=100.0),
             dict(role="coarse", variant="criterion", module_m=0.06, corr_length_m=0.0, load="uniform", size_m=0.96,
                  peak_stress_MPa=2.3, strain_at_peak=1e-4, separated=True, U_ratio=1.5, clamped_bars=1, n_bars=10,
-                 wall_s=4.0)]
+                 steps=100, wall_s=4.0)]
     table = mesh_tables.summarize(rows)
     assert table[1]["speedup"] == pytest.approx(25.0) and table[1]["U_vs_fine"] == pytest.approx(1.5 / 1.4)
+    assert table[1]["work_ratio"] == pytest.approx(300.0) and table[1]["clamped_fraction"] == pytest.approx(0.1)
     (v,) = mesh_tables.verdict(table)
     assert v["peak_error"] == pytest.approx(0.15) and not v["peak_ok"] and v["U_ok"]
 

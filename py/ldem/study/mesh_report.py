@@ -108,14 +108,16 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, fmt: str =
            if v else "(the 0.96 m cube with L = 0.06 m has not run yet)"]
     md += ["", "## Every group beside the fine lattice", "",
            md_table(["load", "size m", "L m", "variant", "seeds", "peak MPa (CV)", "/ fine", "strain at peak",
-                     "/ fine", "U_num/U_min (CV)", "/ fine", "clamped", "bars", "wall s", "speed-up"],
+                     "/ fine", "U_num/U_min (CV)", "/ fine", "clamped", "bars", "wall s", "speed-up",
+                     "fewer bar-steps"],
                     [[t["load"], f"{t['size_m']:g}", f"{t['module_m']:g}", t["variant"], t["seeds"],
                       f"{t['peak_stress_MPa_mean']:.3f} ({t['peak_stress_MPa_cv']:.3f})",
                       num_cell(t["peak_vs_fine"], ".3f"), f"{t['strain_at_peak_mean']:.3e}",
                       num_cell(t["strain_vs_fine"], ".3f"),
                       "-" if t["U_ratio_mean"] == "" else f"{t['U_ratio_mean']:.3f} ({t['U_ratio_cv']:.3f})",
                       num_cell(t["U_vs_fine"], ".3f"), f"{t['clamped_fraction']:.3f}", t["n_bars"],
-                      f"{t['wall_s_mean']:.1f}", num_cell(t["speedup"], ".0f")] for t in table]),
+                      f"{t['wall_s_mean']:.1f}", num_cell(t["speedup"], ".0f"), num_cell(t["work_ratio"], ".0f")]
+                     for t in table]),
            "", "## Figures", ""]
     md += [f"![{cap}]({name})\n\n*{cap}*\n" for name, cap in figs]
     md += ["", read_discussion(out)]

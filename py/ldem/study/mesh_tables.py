@@ -16,7 +16,7 @@ GROUP = ("load", "size_m", "module_m", "corr_length_m", "variant")
 SUMMARY_COLUMNS = GROUP + (
     "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv",
     "U_ratio_mean", "U_ratio_cv", "clamped_fraction", "n_bars", "wall_s_mean", "peak_vs_fine", "strain_vs_fine",
-    "U_vs_fine", "speedup")
+    "U_vs_fine", "speedup", "bar_steps_mean", "work_ratio")
 PEAK_TOLERANCE, U_TOLERANCE = 0.10, 0.20   # issue 15's verdict
 
 
@@ -29,7 +29,8 @@ def _group_stats(g: Sequence[dict]) -> dict:
             "strain_at_peak_mean": strain, "strain_at_peak_cv": strain_cv, "U_ratio_mean": ratio,
             "U_ratio_cv": ratio_cv,
             "clamped_fraction": float(np.mean([r["clamped_bars"] / r["n_bars"] for r in g])),
-            "n_bars": g[0]["n_bars"], "wall_s_mean": float(np.mean([r["wall_s"] for r in g]))}
+            "n_bars": g[0]["n_bars"], "wall_s_mean": float(np.mean([r["wall_s"] for r in g])),
+            "bar_steps_mean": float(np.mean([r["n_bars"] * r["steps"] for r in g]))}
 
 
 def _ratio(a, b):
@@ -40,7 +41,8 @@ def summarize(rows: Sequence[dict], reference: str = "fine") -> List[dict]:
     """One row per group (GROUP), in the order met; each beside the group of
     the same load, size and correlation length whose variant is `reference`
     (the fine lattice; in a refinement study, the coarsest module): ratios of
-    peak, strain at peak and U_num/U_min, and the speed-up in wall time."""
+    peak, strain at peak and U_num/U_min, the speed-up in wall time (runs on
+    other days and loads: noisy) and the work ratio (bar-steps: exact)."""
     groups = {}
     for r in rows:
         groups.setdefault(tuple(r[k] for k in GROUP), []).append(r)
@@ -49,12 +51,13 @@ def summarize(rows: Sequence[dict], reference: str = "fine") -> List[dict]:
         ref = next((f for f in table if f["variant"] == reference and all(
             f[k] == t[k] for k in ("load", "size_m", "corr_length_m"))), None)
         if ref is None:
-            t.update(peak_vs_fine="", strain_vs_fine="", U_vs_fine="", speedup="")
+            t.update(peak_vs_fine="", strain_vs_fine="", U_vs_fine="", speedup="", work_ratio="")
             continue
         t.update(peak_vs_fine=_ratio(t["peak_stress_MPa_mean"], ref["peak_stress_MPa_mean"]),
                  strain_vs_fine=_ratio(t["strain_at_peak_mean"], ref["strain_at_peak_mean"]),
                  U_vs_fine=_ratio(t["U_ratio_mean"], ref["U_ratio_mean"]),
-                 speedup=_ratio(ref["wall_s_mean"], t["wall_s_mean"]))
+                 speedup=_ratio(ref["wall_s_mean"], t["wall_s_mean"]),
+                 work_ratio=_ratio(ref["bar_steps_mean"], t["bar_steps_mean"]))
     return table
 
 
