@@ -140,6 +140,8 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     third = run_cli(*args, "--report-only")     # computes nothing: the tables of the finished cases
     assert third.returncode == 0 and "already finished" not in third.stdout
     assert len(ldem.study.read_csv(os.path.join(out, "cases.csv"))) == 7
+    with open(os.path.join(out, "report.md")) as f:
+        assert "**1 of the cases asked for are not finished**" in f.read()
     fourth = run_cli(*args)
     assert "7 of 8 cases already finished" in fourth.stdout
     assert _results(out) == before    # the same seed gives the same specimen

@@ -261,6 +261,6 @@ def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIAN
     table = summarize(rows)
     io.write_table(os.path.join(out, "summary.csv"), table, SUMMARY_COLUMNS)
     if report:
-        write_mesh_report(out, laws, table, rows, fmt)
+        write_mesh_report(out, laws, table, rows, len(fine) + len(coarse) - len(rows), fmt)
     return table
 
