@@ -68,9 +68,13 @@ def refinement_figure(table, path: str) -> None:
                 ax.plot(*zip(*pts), "o-" if lc else "s--",
                         label=f"{size:g} m, {load}, " + (f"l_c = {lc:g} m" if lc else "per bar"))
         ax.set(xlabel="module side L0 [m]", ylabel=label, xscale="log")
-        ax.grid(alpha=0.3, which="both")
+        ax.set_xticks(sorted({t["module_m"] for t in table}), [f"{m:g}" for m in sorted({t["module_m"] for t in table})])
+        ax.minorticks_off()
+        ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
-    fig.suptitle("refinement: the same cubes with finer modules (six seeds per point)")
+    seeds = sorted({t["seeds"] for t in table})
+    fig.suptitle("refinement: the same cubes with finer modules ("
+                 + (f"{seeds[0]}" if len(seeds) == 1 else f"{seeds[0]} to {seeds[-1]}") + " seeds per point)")
     fig.tight_layout()
     plots.save(fig, path)
 
