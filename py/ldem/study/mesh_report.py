@@ -22,23 +22,30 @@ def against_module_figure(table, column: str, ylabel: str, tolerance: float, pat
     import matplotlib.pyplot as plt
 
     sizes = sorted({t["size_m"] for t in table})
-    fig, axes = plt.subplots(len(loads), len(sizes), figsize=(4.4 * len(sizes), 3.6 * len(loads)), squeeze=False)
+    coarse = sorted({t["module_m"] for t in table if t["variant"] != "fine"}) or [FINE_L0]
+    fig, axes = plt.subplots(len(loads), len(sizes), figsize=(4.4 * len(sizes), 3.6 * len(loads) + 0.6),
+                             squeeze=False)
     for row, load in zip(axes, loads):
         for ax, size in zip(row, sizes):
             group = [t for t in table if t["load"] == load and t["size_m"] == size and t[column] != ""]
             fine = next((t[column] for t in group if t["variant"] == "fine"), None)
             if fine is not None:
                 ax.axhline(fine, color="k", lw=1.2, label=f"fine, L0 = {FINE_L0:g} m")
-                ax.axhspan(fine * (1 - tolerance), fine * (1 + tolerance), color="0.85", zorder=0,
+                ax.axhspan(fine * (1 - tolerance), fine * (1 + tolerance), color="0.88", zorder=0,
                            label=f"fine ± {tolerance:.0%}")
             for v in VARIANTS:
                 pts = sorted((t["module_m"], t[column]) for t in group if t["variant"] == v)
                 if pts:
                     ax.plot(*zip(*pts), _STYLE[v], label=v)
-            ax.set(title=f"{size:g} m, {load}", xlabel="module L [m]", ylabel=ylabel)
+            ax.set(title=f"{size:g} m, {load}", xlabel="module L [m]", ylabel=ylabel,
+                   xlim=(coarse[0] - 0.01, coarse[-1] + 0.01))
             ax.grid(alpha=0.3)
-    axes[0][0].legend(fontsize=7)
-    fig.tight_layout()
+    labels = {}
+    for ax in axes.flat:
+        for h, lab in zip(*ax.get_legend_handles_labels()):
+            labels.setdefault(lab, h)
+    fig.legend(labels.values(), labels.keys(), loc="lower center", ncol=len(labels), fontsize=8, frameon=False)
+    fig.tight_layout(rect=(0, 0.07, 1, 1))
     plots.save(fig, path)
 
 
