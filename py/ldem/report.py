@@ -252,10 +252,11 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
     rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}",
              num_cell(r["separation_strain_mean"], ".3g"), num_cell(r["U_num_J_mean"], ".4g"),
              f"{r['U_min_J']:.4g}", num_cell(r["U_ratio_mean"], ".3f"), num_cell(r["U_ratio_cv"], ".3f"),
-             num_cell(r["U_loss_ratio_mean"], ".3f"), f"{r['U_mincut_ratio_mean']:.3f}", num_cell(r["ca_corrected"], ".4f"),
+             num_cell(r["U_loss_ratio_mean"], ".3f"), f"{r['U_mincut_ratio_mean']:.3f}",
+             num_cell(r["ca_corrected"], ".4f"),
              str(r["energy_errors"])] for r in table]
-    md += [md_table(["load", "size [m]", "separated", "strain at separation", "U_num [J]", "U_min [J]", "U_num/U_min", "CV",
-                      "at load loss", "cheapest cut", "corrected c_a", "energy errors"], rows), ""]
+    md += [md_table(["load", "size [m]", "separated", "strain at separation", "U_num [J]", "U_min [J]", "U_num/U_min",
+                     "CV", "at load loss", "cheapest cut", "corrected c_a", "energy errors"], rows), ""]
     if fits:
         md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]
         md += [md_table(["load", "d", "energy per unit area ~ b^(d-2)", "rms log residual"],

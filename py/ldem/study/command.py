@@ -64,9 +64,7 @@ def _check_tests(tests: Sequence[CubeTest]) -> None:
 
 def cmd_size_effect(args) -> int:
     sizes = _floats(args.sizes, "--sizes")
-    if args.seeds < 1:
-        raise ValueError(f"--seeds must be at least 1 (got {args.seeds})")
-    tests = size_effect_tests(sizes, args.seeds, _loads(args.loads), **_common(args))
+    tests = size_effect_tests(sizes, _seeds(args), _loads(args.loads), **_common(args))
     _check_tests(tests)
     t0 = time.perf_counter()
     table, fits = run_size_effect(tests, args.out, jobs=args.jobs, scheduler=args.scheduler,

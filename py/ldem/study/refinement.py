@@ -68,7 +68,8 @@ def refinement_figure(table, path: str) -> None:
                 ax.plot(*zip(*pts), "o-" if lc else "s--",
                         label=f"{size:g} m, {load}, " + (f"l_c = {lc:g} m" if lc else "per bar"))
         ax.set(xlabel="module side L0 [m]", ylabel=label, xscale="log")
-        ax.set_xticks(sorted({t["module_m"] for t in table}), [f"{m:g}" for m in sorted({t["module_m"] for t in table})])
+        modules = sorted({t["module_m"] for t in table})
+        ax.set_xticks(modules, [f"{m:g}" for m in modules])
         ax.minorticks_off()
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7)
