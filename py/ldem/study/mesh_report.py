@@ -70,13 +70,18 @@ def cracks_side_by_side(rows, size: float, module: float, load: str, path: str, 
     return True
 
 
+def _order(t: dict) -> tuple:
+    """Table rows by load, size, module, then the fine lattice and the variants in their order."""
+    return (t["load"], t["size_m"], t["module_m"], VARIANTS.index(t["variant"]) if t["variant"] in VARIANTS else -1)
+
+
 def _law_rows(laws: Dict[float, dict]):
     return [[f"{m:g}", f"{w['peak_stress_MPa_mean']:.3f} ({w['peak_stress_MPa_cv']:.3f})",
              f"{w['strain_at_peak_mean']:.3e} ({w['strain_at_peak_cv']:.3f})",
              f"{w['U_ratio_mean']:.3f} ({w['U_ratio_cv']:.3f}), {w['separated']} of {w['seeds']}",
              f"{w['eps_p']:.4g}", f"{w['Gf_mean']:g}", f"{w['Gf_cv']:.4g}", f"{w['c_a']:.4g}",
              num_cell(w.get("calibrated_eps_p", ""), ".4g"), num_cell(w.get("calibrated_c_a", ""), ".4g")]
-            for m, w in laws.items()]
+            for m, w in sorted(laws.items())]
 
 
 def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: int = 0, fmt: str = "png") -> None:
@@ -127,7 +132,7 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: i
                       "-" if t["U_ratio_mean"] == "" else f"{t['U_ratio_mean']:.3f} ({t['U_ratio_cv']:.3f})",
                       num_cell(t["U_vs_fine"], ".3f"), f"{t['clamped_fraction']:.3f}", t["n_bars"],
                       f"{t['wall_s_mean']:.1f}", num_cell(t["speedup"], ".0f"), num_cell(t["work_ratio"], ".0f")]
-                     for t in table]),
+                     for t in sorted(table, key=_order)]),
            "", "## Figures", ""]
     md += [f"![{cap}]({name})\n\n*{cap}*\n" for name, cap in figs]
     md += ["", read_discussion(out)]
