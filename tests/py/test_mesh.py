@@ -120,7 +120,8 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     (L = 0.04) with three variants; a second call computes nothing, a lost
     case is computed again alone."""
     out = str(tmp_path / "mesh")
-    args = ["study", "mesh", "--out", out, "--sizes", "0.12", "--modules", "0.04", "--seeds", "2", "--loads",
+    args = ["study", "mesh", "--out", out, "--sizes", "0.12", "--modules", "0.04", "--seeds", "2", "--law-seeds", "2",
+            "--loads",
             "uniform", "--variants", "plain,criterion,calibrated", "--calibration-size", "0.08", "--threads", "1",
             "--no-progress"]
     first = run_cli(*args)
@@ -154,6 +155,7 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     (["--modules", "0.08"], "a 0.12 m cube cannot be cut into modules of 0.08 m"),
     (["--set", "c_a=0.2"], "--set c_a: the mesh study sets it"),
     (["--reference", "/nonexistent"], "not a study folder"),
+    (["--law-seeds", "1"], "--law-seeds must be at least 2"),
     (["--modules", "0.04", "--calibration-size", "0.12"], "must not be one of the cubes predicted"),
 ])
 def test_bad_mesh_study_input_is_one_line(tmp_path, extra, message):

@@ -126,10 +126,12 @@ def cmd_mesh(args) -> int:
     for name in ("L0", "eps_p", "Gf_mean", "Gf_cv", "c_a"):
         if name in common:
             raise ValueError(f"--set {name}: the mesh study sets it (from the criterion)")
+    if args.law_seeds < 2:
+        raise ValueError(f"--law-seeds must be at least 2: the law needs a mean and a CV (got {args.law_seeds})")
     table = run_mesh(args.out, _floats(args.sizes, "--sizes"), _floats(args.modules, "--modules"), variants,
                      _loads(args.loads), _seeds(args), args.reference, run=not args.report_only,
                      report=not args.no_report, common=common, fmt=args.figure_format,
-                     calibration_size=args.calibration_size, **_run_options(args))
+                     calibration_size=args.calibration_size, law_seeds=args.law_seeds, **_run_options(args))
     print(f"mesh study: wrote {args.out}/laws.csv, cases.csv, summary.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for t in table:
@@ -213,6 +215,8 @@ def add_parser(sub) -> None:
                         "c_a: the corrected c_a only; criterion: both; calibrated: eps_p and c_a from the "
                         "coarse and the fine lattice on the calibration cube")
     m.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
+    m.add_argument("--law-seeds", dest="law_seeds", type=int, default=6,
+                   help="specimens of each cube that gives a law (fine cubes of side L, calibration cubes)")
     m.add_argument("--reference", action="append", default=[], metavar="DIR",
                    help="a size-effect study folder whose finished fine cases are used instead of running "
                         "them (repeatable)")

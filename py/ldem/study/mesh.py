@@ -237,8 +237,9 @@ def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, cal
 def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIANTS, loads=("uniform", "triangular"),
              seeds: int = 6, references: Sequence[str] = (), run: bool = True, report: bool = True,
              common: Optional[dict] = None, fmt: str = "png", calibration_size: float = CALIBRATION_SIZE,
-             **kw) -> List[dict]:
-    """The whole study: the fine cubes of side L and their laws (laws.csv), the
+             law_seeds: int = 6, **kw) -> List[dict]:
+    """The whole study: the fine cubes of side L and their laws (laws.csv;
+    law_seeds specimens each, whatever the seeds of the targets), the
     fine references (found in `references`, size-effect study folders, or run
     here), the coarse cases; cases.csv, summary.csv and (with report)
     report.md with its figures. With run False nothing is computed: the
@@ -250,7 +251,7 @@ def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIAN
         check_grid([calibration_size], modules)
         if any(math.isclose(calibration_size, s) for s in sizes):
             raise ValueError(f"the calibration cube ({calibration_size:g} m) must not be one of the cubes predicted")
-    laws = run_laws(modules, seeds, out, references, run=run, calibrate=calibrate, calibration_size=calibration_size,
+    laws = run_laws(modules, law_seeds, out, references, run=run, calibrate=calibrate, calibration_size=calibration_size,
                     common=common, **kw)
     fine = fine_tests(sizes, loads, seeds, **common)
     coarse = coarse_tests(sizes, modules, variants, loads, seeds, laws, **common)
