@@ -206,22 +206,25 @@ def calibration_tests(modules, seeds: int, size: float = CALIBRATION_SIZE, **com
 
 
 def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, calibrate: bool = True,
-             calibration_size: float = CALIBRATION_SIZE, **kw) -> Dict[float, dict]:
+             calibration_size: float = CALIBRATION_SIZE, common: Optional[dict] = None, **kw) -> Dict[float, dict]:
     """Runs (or finds) the fine cubes of side L (and, with calibrate, the
     calibration cubes), writes laws.csv and returns L -> law."""
-    common = kw.pop("common")
+    common = dict(common or {})
     base = CubeTest(**common)
     tests = law_tests(modules, seeds, **common)
     cal = calibration_tests(modules, seeds, calibration_size, **common) if calibrate else []
-    found = [(t, case_row(s)) for t, (s, _) in zip(tests + cal, run_located(tests + cal, out, references, run=run,
-                                                                                **kw)) if s is not None]
+    summaries = run_located(tests + cal, out, references, run=run, **kw)
+
+    def finished(tests_, summaries_):
+        return [(t, case_row(s)) for t, (s, _) in zip(tests_, summaries_) if s is not None]
+    law_rows, cal_rows = finished(tests, summaries[:len(tests)]), finished(cal, summaries[len(tests):])
     laws = {}
     for m in modules:
-        fine = [r for t, r in found if t in tests and t.size == m]
+        fine = [r for t, r in law_rows if t.size == m]
         if fine:
             laws[m] = criterion_law(fine, base)
-        cal_fine = [r for t, r in found if t in cal and t.L0 == FINE_L0]
-        cal_coarse = [r for t, r in found if t in cal and t.L0 == m]
+        cal_fine = [r for t, r in cal_rows if t.L0 == FINE_L0]
+        cal_coarse = [r for t, r in cal_rows if t.L0 == m]
         if m in laws and cal_fine and cal_coarse:
             laws[m].update(calibrated_law(cal_fine, cal_coarse, base))
     io.prepare_dir(out)
