@@ -1,6 +1,6 @@
 #include "ldem/Integrator.hpp"
 
-#include "ldem/Parallel.hpp"
+#include "ldem/Slab.hpp"
 
 namespace ldem {
 
@@ -42,11 +42,11 @@ double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, cons
     return damping;
 }
 
-double kineticEnergy(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask, const Field3& v) {
-    return blockSum<1>(std::int64_t(mass.size()), [&](std::int64_t i, std::array<double, 1>& e) {
+double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v) {
+    return nodeSum<1>(lat, [&](std::int32_t i, std::array<double, 1>& e) {
         const unsigned held = mask[i];
         const double vx = (held & 1) ? 0 : v.x[i], vy = (held & 2) ? 0 : v.y[i], vz = (held & 4) ? 0 : v.z[i];
-        e[0] += 0.5 * mass[i] * (vx * vx + vy * vy + vz * vz);
+        e[0] += 0.5 * lat.mass[i] * (vx * vx + vy * vy + vz * vz);
     })[0];
 }
 

@@ -41,7 +41,7 @@ double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<doub
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
                     const Field3& f, Field3& u, Field3& v);
 
-// Sum of 1/2 m v^2 over the DOFs not set in mask.
-double kineticEnergy(const std::vector<double>& mass, const std::vector<std::uint8_t>& mask, const Field3& v);
+// Sum of 1/2 m v^2 over the DOFs not set in mask, of the owned nodes (Slab.hpp).
+double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v);
 
 }  // namespace ldem

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ldem/Parallel.hpp"
+#include "ldem/Slab.hpp"
 
 namespace ldem {
 
@@ -27,10 +28,10 @@ void BarForceBuffers::prepare(const Lattice& lat, int threads) {
     threads_ = threads;
     stride_ = std::size_t(lat.maxBarsInLayer);
     // Buffer index of every layer: own ones at the ends of each range, a ring of three inside.
-    std::vector<int> buffer(lat.numLayers());
+    std::vector<int> buffer(lat.numLayers(), 0);
     int count = 0;
     for (int t = 0; t < threads; ++t) {
-        const auto [m0, m1] = layerRange(lat.numLayers(), t, threads);
+        const auto [m0, m1] = layerRange(lat.forceLayers(), t, threads);
         const int ring = count;
         if (m1 - m0 > 4) count += 3;
         for (int m = m0; m < m1; ++m)
@@ -87,18 +88,24 @@ void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers
 }
 
 BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bars) {
-    const auto sums = blockSum<4>(std::int64_t(lat.barRows.size()), [&](std::int64_t r, std::array<double, 4>& acc) {
-        forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily& fam, double EA, double eps) {
-            const double epsR = bars.epsR[b];
-            // kappa is the damage reached at the last force evaluation; the bar
-            // can only have gone further since, so take the larger.
-            const double kappa = updateDamage(bars.kappa[b], eps);
-            acc[0] += storedEnergy(eps, kappa, EA, bars.epsP, epsR, fam.L);
-            acc[1] += dissipatedEnergy(kappa, EA, bars.epsP, epsR, fam.L);
-            const DamageState s = damageState(kappa, bars.epsP, epsR);
-            acc[2] += s == DamageState::Damaged;
-            acc[3] += s == DamageState::Broken;
-        });
+    auto addBar = [&](std::int64_t b, const BarFamily& fam, double EA, double eps, std::array<double, 4>& acc) {
+        const double epsR = bars.epsR[b];
+        // kappa is the damage reached at the last force evaluation; the bar
+        // can only have gone further since, so take the larger.
+        const double kappa = updateDamage(bars.kappa[b], eps);
+        acc[0] += storedEnergy(eps, kappa, EA, bars.epsP, epsR, fam.L);
+        acc[1] += dissipatedEnergy(kappa, EA, bars.epsP, epsR, fam.L);
+        const DamageState s = damageState(kappa, bars.epsP, epsR);
+        acc[2] += s == DamageState::Damaged;
+        acc[3] += s == DamageState::Broken;
+    };
+    // Owned layers only, each summed in bar order, added in layer order: the
+    // same sums for any number of ranks and threads (Slab.hpp).
+    const auto sums = layerSum<4>(lat, [&](int m, std::array<double, 4>& acc) {
+        for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r)
+            forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily& fam, double EA, double eps) {
+                addBar(b, fam, EA, eps, acc);
+            });
     });
     return {sums[0], sums[1], std::int64_t(sums[2]), std::int64_t(sums[3])};
 }

@@ -188,7 +188,7 @@ void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Fiel
     {
 #pragma omp single
         g.prepare(lat, threadCount());
-        const auto [m0, m1] = layerRange(lat.numLayers(), threadIndex(), threadCount());
+        const auto [m0, m1] = layerRange(lat.forceLayers(), threadIndex(), threadCount());
         for (int m = m0; m < m1; ++m) {
             barLayer(lat, m, u, g, law);
             if (m0 == 0 || m >= m0 + 2) nodeLayer(lat, m, g, f), afterLayer(m);

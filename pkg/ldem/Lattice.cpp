@@ -85,11 +85,34 @@ std::array<double, 3> Lattice::position(std::int32_t node) const {
     const std::int32_t nc = numCorners();
     if (node < nc) {
         const int i = node % (nx + 1), j = (node / (nx + 1)) % (ny + 1), k = node / ((nx + 1) * (ny + 1));
-        return {i * L0, j * L0, k * L0};
+        return {i * L0, j * L0, (k + kOffset) * L0};
     }
     const std::int32_t c = node - nc;
     const int i = c % nx, j = (c / nx) % ny, k = c / (nx * ny);
-    return {(i + 0.5) * L0, (j + 0.5) * L0, (k + 0.5) * L0};
+    return {(i + 0.5) * L0, (j + 0.5) * L0, (k + kOffset + 0.5) * L0};
+}
+
+std::int64_t Lattice::globalNode(std::int32_t n) const {
+    const std::int64_t plane = std::int64_t(nx + 1) * (ny + 1), cells = std::int64_t(nx) * ny;
+    if (n < numCorners()) return n + plane * kOffset;
+    return plane * (nzTotal + 1) + (n - numCorners()) + cells * kOffset;
+}
+
+std::int32_t Lattice::localNode(std::int64_t g) const {
+    const std::int64_t plane = std::int64_t(nx + 1) * (ny + 1), cells = std::int64_t(nx) * ny;
+    const std::int64_t corners = plane * (nzTotal + 1);
+    const std::int64_t local = g < corners ? g - plane * kOffset : g - corners - cells * kOffset;
+    const std::int64_t count = g < corners ? plane * (nz + 1) : cells * nz;
+    if (g < 0 || local < 0 || local >= count) return -1;
+    return std::int32_t(g < corners ? local : numCorners() + local);
+}
+
+std::pair<std::int64_t, std::int64_t> Lattice::ownedBars() const {
+    auto firstOfLayer = [this](int m) {
+        const std::int32_t r = barLayerStart[m];
+        return r < std::int32_t(barRows.size()) ? barRows[r].first : numBars();
+    };
+    return {firstOfLayer(ownBegin), firstOfLayer(ownEnd)};
 }
 
 const BarRow& Lattice::rowOf(std::int64_t bar) const {
@@ -142,6 +165,11 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) 
 
 Lattice buildLattice(int nx, int ny, int nz, double L0, const Material& m,
                      const std::vector<std::uint8_t>& moduleMask) {
+    return buildSlab(nx, ny, nz, L0, m, moduleMask, 0, nz);
+}
+
+Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const std::vector<std::uint8_t>& moduleMask,
+                  int k0, int k1) {
     if (nx < 1 || ny < 1 || nz < 1)
         throw std::invalid_argument("a lattice needs at least one module per direction");
     if (!(L0 > 0) || !std::isfinite(L0))
@@ -153,13 +181,20 @@ Lattice buildLattice(int nx, int ny, int nz, double L0, const Material& m,
                                     " entries for " + std::to_string(modules) + " modules");
     if (!moduleMask.empty() && std::count(moduleMask.begin(), moduleMask.end(), 0) == std::ptrdiff_t(modules))
         throw std::invalid_argument("the module mask keeps no module");
-    if (expectedBarCount(nx, ny, nz) > std::int64_t(INT32_MAX))
-        throw std::invalid_argument("lattice too large for 32-bit node ids");
-    checkMemory(nx, ny, nz);  // the box's: an upper bound for a masked lattice
+    if (k0 < 0 || k1 > nz || k0 >= k1)
+        throw std::invalid_argument("a slab owns module layers [k0, k1) with 0 <= k0 < k1 <= nz");
+    const int kLo = std::max(k0 - 1, 0), kHi = std::min(k1 + 1, nz);  // the box: owned layers and halos
+    if (expectedBarCount(nx, ny, kHi - kLo) > std::int64_t(INT32_MAX))
+        throw std::invalid_argument("lattice too large for 32-bit node ids in one process: split it over more "
+                                    "MPI ranks");
+    checkMemory(nx, ny, kHi - kLo);  // the box's: an upper bound for a masked lattice
 
     Lattice lat;
-    lat.nx = nx, lat.ny = ny, lat.nz = nz, lat.L0 = L0;
+    lat.nx = nx, lat.ny = ny, lat.nz = kHi - kLo, lat.L0 = L0;
     lat.moduleMask = moduleMask;
+    lat.kOffset = kLo, lat.nzTotal = nz;
+    lat.ownBegin = 2 * (k0 - kLo), lat.ownEnd = 2 * (k1 - kLo) + (k1 == nz ? 1 : 0);
+    nz = lat.nz;  // from here on, the box
     lat.mass.assign(expectedNodeCount(nx, ny, nz), 0.0);
     const double moduleMass = m.rho * L0 * L0 * L0;
     for (int k = 0; k < nz; ++k)

@@ -22,9 +22,17 @@
 // get mass 0 and no bars. A family's row then becomes one or more BarRows
 // (segments), one per run of bars that exist and whose shares fit the row's
 // (share, endShare) pattern; a full box keeps one BarRow per row.
+//
+// Slabs (MPI, Slab.hpp): a process may hold only the module layers
+// [k0, k1) of an nz-layer lattice and one halo module layer on each side.
+// Such a lattice is the box of its modules (nz = its own layers, ids and
+// layers local), placed at global module layer kOffset; the mask, the shares
+// and the random field see the whole lattice (globalNode, position), so every
+// bar it owns is the bar of the whole lattice, bit for bit.
 #pragma once
 #include <array>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "ldem/Material.hpp"
@@ -82,12 +90,35 @@ struct Lattice {
     std::vector<std::int32_t> barLayerStart, nodeLayerStart;  // rows of layer m: [start[m], start[m+1])
     std::int32_t maxBarsInLayer = 0;
     std::vector<std::uint8_t> moduleMask;  // module (i, j, k) at i + nx (j + ny k), nonzero = present; empty = all
+                                           // (of the whole lattice: k global)
+    int kOffset = 0;  // global module layer of local layer k = 0 (0 unless a slab)
+    int nzTotal = 0;  // module layers of the whole lattice (nz unless a slab)
+    int ownBegin = 0, ownEnd = 0;  // the node and bar layers this process owns: computes, reports, sums
 
-    // Whether module (i, j, k) is present (false outside the box).
+    // Whether module (i, j, k) of this box (k local) is present in the whole lattice.
     bool present(int i, int j, int k) const {
-        if (i < 0 || i >= nx || j < 0 || j >= ny || k < 0 || k >= nz) return false;
+        k += kOffset;
+        if (i < 0 || i >= nx || j < 0 || j >= ny || k < 0 || k >= nzTotal) return false;
         return moduleMask.empty() || moduleMask[i + std::size_t(nx) * (j + std::size_t(ny) * k)] != 0;
     }
+    bool owns(int layer) const { return layer >= ownBegin && layer < ownEnd; }
+    // The layers the force pass covers, [0, forceLayers()): the owned ones and
+    // the halo below, whose bars reach the owned nodes (the halo above is its owner's).
+    int forceLayers() const { return ownEnd; }
+    bool isSlab() const { return ownBegin > 0 || ownEnd < numLayers(); }  // a part of a lattice split over ranks
+    // Node id in the whole lattice of local node n, and back (-1: not in this box).
+    std::int64_t globalNode(std::int32_t n) const;
+    std::int32_t localNode(std::int64_t global) const;
+    // Node layer (local) of node n: 2k for corners of plane k, 2k + 1 for centres.
+    int layerOfNode(std::int32_t n) const {
+        return n < numCorners() ? 2 * (n / ((nx + 1) * (ny + 1))) : 2 * ((n - numCorners()) / (nx * ny)) + 1;
+    }
+    // Nodes of layer m: the contiguous ids [first, first + count).
+    std::pair<std::int32_t, std::int32_t> layerNodes(int m) const {
+        return m % 2 ? std::pair{centreId(0, 0, m / 2), nx * ny} : std::pair{cornerId(0, 0, m / 2), (nx + 1) * (ny + 1)};
+    }
+    // The bars of the owned layers: [first, end) (bars are numbered layer by layer).
+    std::pair<std::int64_t, std::int64_t> ownedBars() const;
 
     std::int64_t numNodes() const { return std::int64_t(mass.size()); }
     std::int64_t numBars() const { return barRows.back().first + barRows.back().count; }
@@ -98,7 +129,7 @@ struct Lattice {
     std::int32_t nodeId(NodeKind kind, int i, int j, int k) const {
         return kind == NodeKind::Corner ? cornerId(i, j, k) : centreId(i, j, k);
     }
-    std::array<double, 3> position(std::int32_t node) const;  // reference position [m]
+    std::array<double, 3> position(std::int32_t node) const;  // reference position in the whole lattice [m]
 
     // Per-bar query (not for hot loops): the row of a bar.
     const BarRow& rowOf(std::int64_t bar) const;
@@ -154,5 +185,12 @@ Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m);
 // lattice, bar numbers included.
 Lattice buildLattice(int nx, int ny, int nz, double L0, const Material& m,
                      const std::vector<std::uint8_t>& moduleMask);
+
+// The slab of that lattice that owns module layers [k0, k1), with one halo
+// module layer below and above (where the lattice has them): owned bars and
+// owned nodes' masses are those of the whole lattice; halo nodes are moved by
+// their owner (Slab.hpp exchanges them).
+Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const std::vector<std::uint8_t>& moduleMask,
+                  int k0, int k1);
 
 }  // namespace ldem

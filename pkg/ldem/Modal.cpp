@@ -4,14 +4,15 @@
 #include <stdexcept>
 
 #include "ldem/InternalForces.hpp"
-#include "ldem/Parallel.hpp"
+#include "ldem/Slab.hpp"
 #include "ldem/RandomField.hpp"
 
 namespace ldem {
 
 namespace {
-double dot(const Field3& a, const Field3& b) {
-    return blockSum<1>(std::int64_t(a.x.size()), [&](std::int64_t i, std::array<double, 1>& s) {
+// a . b over the owned nodes, the same bits for any number of ranks (Slab.hpp).
+double dot(const Lattice& lat, const Field3& a, const Field3& b) {
+    return nodeSum<1>(lat, [&](std::int32_t i, std::array<double, 1>& s) {
         s[0] += a.x[i] * b.x[i] + a.y[i] * b.y[i] + a.z[i] * b.z[i];
     })[0];
 }
@@ -81,16 +82,19 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         const bool removed = !(lat.mass[i] > 0);
         const double r = removed ? 0.0 : 1.0 / std::sqrt(lat.mass[i]);
         s.x[i] = (mask[i] & 1) ? 0 : r, s.y[i] = (mask[i] & 2) ? 0 : r, s.z[i] = (mask[i] & 4) ? 0 : r;
-        if (!removed) freeDofs += !(mask[i] & 1) + !(mask[i] & 2) + !(mask[i] & 4);
+        if (!removed && lat.owns(lat.layerOfNode(std::int32_t(i))))
+            freeDofs += !(mask[i] & 1) + !(mask[i] & 2) + !(mask[i] & 4);
     }
+    freeDofs = commOf(lat).sum(freeDofs);
     Field3 q(n), qPrev(n), w(n), tmp(n);
     BarForceBuffers barWork;
-    for (std::int64_t i = 0; i < n; ++i) {  // deterministic start vector
-        q.x[i] = s.x[i] * (hashedUniform(7, i, 0) - 0.5);
-        q.y[i] = s.y[i] * (hashedUniform(7, i, 1) - 0.5);
-        q.z[i] = s.z[i] * (hashedUniform(7, i, 2) - 0.5);
+    for (std::int64_t i = 0; i < n; ++i) {  // deterministic start vector, a function of the node
+        const std::uint64_t id = lat.globalNode(std::int32_t(i));
+        q.x[i] = s.x[i] * (hashedUniform(7, id, 0) - 0.5);
+        q.y[i] = s.y[i] * (hashedUniform(7, id, 1) - 0.5);
+        q.z[i] = s.z[i] * (hashedUniform(7, id, 2) - 0.5);
     }
-    const double q0 = std::sqrt(dot(q, q));
+    const double q0 = std::sqrt(dot(lat, q, q));
     if (q0 == 0) throw std::invalid_argument("every degree of freedom is prescribed: nothing moves");
     auto axpy = [n](Field3& y, double a, const Field3& x, double b) {  // y = a y + b x
 #pragma omp parallel for schedule(static)
@@ -108,14 +112,15 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             tmp.x[i] = s.x[i] * q.x[i], tmp.y[i] = s.y[i] * q.y[i], tmp.z[i] = s.z[i] * q.z[i];
+        exchangeHalo(lat, tmp);  // the product at the owned nodes needs the halo's
         linearStiffnessProduct(lat, tmp, barWork, w);
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)
             w.x[i] = s.x[i] * w.x[i] - betaPrev * qPrev.x[i], w.y[i] = s.y[i] * w.y[i] - betaPrev * qPrev.y[i],
             w.z[i] = s.z[i] * w.z[i] - betaPrev * qPrev.z[i];
-        const double a = dot(w, q);
+        const double a = dot(lat, w, q);
         axpy(w, 1.0, q, -a);
-        const double b = std::sqrt(dot(w, w));
+        const double b = std::sqrt(dot(lat, w, w));
         alpha.push_back(a);
         // Krylov space exhausted (tiny lattices): the Ritz values are exact. Its
         // dimension is at most the number of free DOFs; going on past it (b is

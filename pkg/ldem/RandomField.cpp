@@ -63,7 +63,7 @@ std::array<double, 3> midpoint(const Lattice& lat, std::int32_t a, std::int32_t 
 
 // (i, j, k) of the module holding point x, clamped into the lattice.
 std::array<int, 3> moduleOf(const Lattice& lat, const std::array<double, 3>& x) {
-    const int n[3] = {lat.nx, lat.ny, lat.nz};
+    const int n[3] = {lat.nx, lat.ny, lat.nzTotal};
     std::array<int, 3> ijk{};
     for (int d = 0; d < 3; ++d)
         ijk[d] = std::min(std::max(int(std::floor(x[d] / lat.L0 + 1e-9)), 0), n[d] - 1);
@@ -87,7 +87,7 @@ std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, s
     if (m.corrLength <= 0) {
         forEachBar(lat, [&](std::int64_t b, std::int32_t a, std::int32_t c, const BarRow&, int) {
             if (!m.GfPerModule) {
-                gf[b] = w.quantile(hashedUniform(seed, a, c));
+                gf[b] = w.quantile(hashedUniform(seed, lat.globalNode(a), lat.globalNode(c)));
                 return;
             }
             // Key (module number, ~0): no (node, node) key of a bar can collide with it.

@@ -7,6 +7,7 @@
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
+#include "ldem/Slab.hpp"
 
 namespace ldem {
 
@@ -22,9 +23,12 @@ Simulation::Simulation(const CubeTestParams& p)
     : Simulation(p.geometry.modules(), p.geometry.modules(), p.geometry.modules(), p.geometry.L0, p.material,
                  p.loading, p.run) {}
 
+// Under mpirun, each rank builds and runs only its slab (Slab.hpp).
 Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
                        const RunParams& run)
-    : Simulation(cubeTestSpecimen(nx, ny, nz, L0, m, load), m, load, run) {}
+    : Simulation(cubeTestSpecimen(nx, ny, nz, L0, m, load, {},
+                                  slabLayers(nz, Comm::world().rank(), Comm::world().size())),
+                 m, load, run) {}
 
 Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run)
     : mat_(m), load_(load), run_(run) {
@@ -32,6 +36,9 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     load_.validate();
     run_.validate();
     validate(specimen);
+    if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
+        throw std::invalid_argument("under mpirun, only the cube test is split into slabs (ldem cube); run "
+                                    "other specimens in one process");
     setThreads(run_.threads);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
@@ -81,6 +88,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     {
         const std::vector<double> gf = fractureEnergyField();
         std::vector<double> epsR(lat_.numBars());
+        const auto owned = lat_.ownedBars();
         for (const BarRow& row : lat_.barRows) {
             const BarFamily& fam = lat_.families[row.family];
             for (int p = 0; p < row.count; ++p) {
@@ -88,10 +96,11 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
                 const double share = row.shareAt(p);
                 const LimitStrain ls = limitStrain(fam.Af * share, gf[b], fam.EA * share, mat_.epsP, fam.L);
                 epsR[b] = ls.epsR;
-                clamped_ += ls.clamped;
+                clamped_ += ls.clamped && b >= owned.first && b < owned.second;
             }
         }
         bars_ = BarState(lat_, mat_.epsP, std::move(epsR));
+        clamped_ = commOf(lat_).sum(clamped_);
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     cd_ = CentralDifference(dt_, Df_);
@@ -133,9 +142,7 @@ const std::vector<std::int32_t>& Simulation::group(const std::string& name) cons
 
 double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     const std::vector<double>& f = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
-    double sum = 0;
-    for (auto n : nodes) sum += f[n];
-    return sum;
+    return listSum(lat_, nodes.size(), [&](std::size_t k) { return nodes[k]; }, [&](std::size_t k) { return f[nodes[k]]; });
 }
 
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
@@ -143,9 +150,12 @@ double Simulation::supportStress() const { return (0.0 + meas_.sense() * groupFo
 
 bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
+// u[b] - u[a], read on the ranks that own b and a (the sum of +u[b] and -u[a] is exact in either order).
 double Simulation::probe(const Probe& q) const {
     const std::vector<double>& u = q.dim == 0 ? u_.x : q.dim == 1 ? u_.y : u_.z;
-    return u[q.b] - (q.a >= 0 ? u[q.a] : 0.0);
+    const std::int32_t nodes[2] = {q.b, q.a};
+    return listSum(lat_, q.a >= 0 ? 2 : 1, [&](std::size_t k) { return nodes[k]; },
+                   [&](std::size_t k) { return k == 0 ? u[q.b] : -u[q.a]; });
 }
 
 CurvePoint Simulation::measure() const {
@@ -158,7 +168,7 @@ CurvePoint Simulation::measure() const {
     for (const Probe& q : meas_.probes) p.probes.push_back(probe(q));
     const BarEnergies e = barEnergies(lat_, u_, bars_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
-    p.kinetic = kineticEnergy(lat_.mass, pre_.mask, v_);
+    p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
     p.externalWork = externalWork_;
     p.damping = dampingWork_;
     return p;
@@ -176,8 +186,12 @@ void Simulation::advance() {
     finishStep();
 }
 
+// Advances the owned nodes of layer m; the halo's are moved by their owner.
+double Simulation::advanceNodes(int m) {
+    return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
+}
+
 void Simulation::finishStep() {
-    for (double d : layerDamping_) dampingWork_ += d;  // layer order: the same sum for any thread count
     // External work of the prescribed DOFs over the centred increment
     // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
     // Under opening control the servo moves U from state n (its opening is that of state n).
@@ -185,21 +199,38 @@ void Simulation::finishStep() {
     if (openingControl()) servo_.advance(dt_, time_, opening_, drive_);
     const double Unext = openingControl() ? servo_.U : drive_.displacement(tNext);
     const double centred = 0.5 * (Unext - Uback);
+    // Per owned layer: damping work, external work, support reaction (state n);
+    // one exchange of them per step, added in layer order: the same sums for
+    // any number of threads and ranks (Slab.hpp).
+    const int owned = lat_.ownEnd - lat_.ownBegin;
+    std::vector<double> partial(3 * std::size_t(owned), 0.0);
+    for (int i = 0; i < owned; ++i) partial[3 * std::size_t(i)] = layerDamping_[lat_.ownBegin + i];
+    addByLayer(lat_, partial, 3, 1, pre_.node.size(), [&](std::size_t k) { return pre_.node[k]; }, [&](std::size_t k) {
+        const int d = pre_.dim[k];
+        return -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
+    });
+    const std::vector<double>& fm = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
+    addByLayer(lat_, partial, 3, 2, support_->size(), [&](std::size_t k) { return (*support_)[k]; },
+               [&](std::size_t k) { return fm[(*support_)[k]]; });
+    const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 3);
+    dampingWork_ += sums[0];
+    externalWork_ += sums[1];
+    stressBefore_ = (0.0 + meas_.sense() * sums[2]) / meas_.area;  // = supportStress() of state n, bit for bit
     for (std::size_t k = 0; k < pre_.node.size(); ++k) {
         const auto n = pre_.node[k];
         const int d = pre_.dim[k];
         const double w = pre_.weight[k];
-        std::vector<double>& fd = d == 0 ? f_.x : d == 1 ? f_.y : f_.z;
-        externalWork_ -= fd[n] * w * centred;
         (d == 0 ? u_.x : d == 1 ? u_.y : u_.z)[n] = w * Unext;
         (d == 0 ? v_.x : d == 1 ? v_.y : v_.z)[n] = w * (Unext - Unow) / dt_;
     }
+    exchangeHalo(lat_, u_);  // the neighbours' layers next to mine, moved by them
     time_ = tNext;
     ++step_;
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
 }
 
 Checkpoint Simulation::checkpoint() const {
+    if (lat_.isSlab()) throw std::logic_error("checkpoints of a run split over MPI ranks are not supported");
     if (!progress_.pendingAdvance)
         throw std::logic_error("a checkpoint is taken at a record, from run()'s observer");
     return {u_, v_, f_, bars_.kappa, bars_.epsR, bars_.softening, time_, externalWork_, dampingWork_,
@@ -207,6 +238,7 @@ Checkpoint Simulation::checkpoint() const {
 }
 
 void Simulation::restore(const Checkpoint& c) {
+    if (lat_.isSlab()) throw std::invalid_argument("restarts of a run split over MPI ranks are not supported");
     const std::size_t n = std::size_t(lat_.numNodes()), b = std::size_t(lat_.numBars());
     if (c.u.x.size() != n || c.v.x.size() != n || c.f.x.size() != n || c.kappa.size() != b || c.epsR.size() != b ||
         c.softening.size() != lat_.barRows.size())
@@ -234,8 +266,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     }
     RunSummary& s = g.summary;
     // The peak, at every step: the stress of state n is known once its forces are.
-    auto trackPeak = [&](double U) {
-        const double stress = supportStress();
+    auto trackPeak = [&](double stress, double U) {
         if (stress <= s.peakStress) return;
         s.peakStress = stress;
         s.strainAtPeak = meanStrainOf(U);
@@ -248,12 +279,12 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
-            trackPeak(driveBefore());
+            trackPeak(stressBefore_, driveBefore());
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.
         computeForces();
-        trackPeak(driveNow());
+        trackPeak(supportStress(), driveNow());
         const CurvePoint p = measure();
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the

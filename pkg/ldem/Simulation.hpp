@@ -185,7 +185,7 @@ private:
     double driveBefore() const { return openingControl() ? servo_.Uprev : drive_.displacement(time_ - dt_); }
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
     double probe(const Probe& q) const;  // its reading at the current state [m]
-    double advanceNodes(int layer) { return advanceLayer(lat_, layer, cd_, pre_.mask, f_, u_, v_); }
+    double advanceNodes(int layer);
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
     void finishStep();  // damping and external work, prescribed DOFs, clock
@@ -210,6 +210,7 @@ private:
     CentralDifference cd_{0, 0};
     std::vector<double> layerDamping_;  // damping work of each node layer in the current step
     double externalWork_ = 0, dampingWork_ = 0;
+    double stressBefore_ = 0;  // supportStress() of the state the last step started from
     std::int64_t step_ = 0, clamped_ = 0;
     int recordEvery_ = 1;
     RunProgress progress_;

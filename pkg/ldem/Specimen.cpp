@@ -36,7 +36,7 @@ void validate(const Specimen& s) {
                                     std::to_string(n) + " nodes)");
     };
     for (const auto& [name, nodes] : s.groups) {
-        if (nodes.empty()) fail("group '" + name + "' has no node");
+        if (nodes.empty() && !s.lattice.isSlab()) fail("group '" + name + "' has no node");  // a slab may hold none
         for (auto id : nodes) checkNode(id, "group '" + name + "'");
     }
     const Prescribed& p = s.prescribed;
@@ -59,36 +59,52 @@ void validate(const Specimen& s) {
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
-                          const std::vector<std::uint8_t>& moduleMask) {
+                          const std::vector<std::uint8_t>& moduleMask, std::pair<int, int> slab) {
     m.validate();
     p.validate();
     Specimen s;
-    s.lattice = buildLattice(nx, ny, nz, L0, m, moduleMask);
+    const auto [k0, k1] = slab.second < 0 ? std::pair<int, int>{0, nz} : slab;
+    s.lattice = buildSlab(nx, ny, nz, L0, m, moduleMask, k0, k1);
     const Lattice& lat = s.lattice;
     Prescribed& c = s.prescribed;
     c.mask.assign(lat.numNodes(), 0);
     std::vector<std::int32_t>& bottomNodes = s.groups["bottom"];
     std::vector<std::int32_t>& topNodes = s.groups["top"];
+    // Whether corner (i, j) of global plane k is a node of some present module.
+    auto onFace = [&](int i, int j, int k) {
+        for (int c = 0; c < 8; ++c)
+            if (lat.present(i - (c & 1), j - (c >> 1 & 1), k - (c >> 2) - lat.kOffset)) return true;
+        return false;
+    };
+    auto corner = [&](int i, int j, int k) {  // local id of a corner of global plane k, -1 if not here
+        return lat.localNode(i + std::int64_t(nx + 1) * (j + std::int64_t(ny + 1) * k));
+    };
     const double width = lat.nx * lat.L0;
     double weightSum = 0;
+    int faceNodes = 0;
     for (int j = 0; j <= lat.ny; ++j)
         for (int i = 0; i <= lat.nx; ++i) {
-            const auto bottom = lat.cornerId(i, j, 0), top = lat.cornerId(i, j, lat.nz);
-            if (lat.mass[bottom] == 0 || lat.mass[top] == 0) continue;  // outside a clipped prism's faces
-            bottomNodes.push_back(bottom), topNodes.push_back(top);
-            // Lower face: vertical DOF fixed; lateral fixed, or on rollers with only
-            // the rigid-body motion pinned (x, y at one corner, y at the next).
-            c.add(bottom, 2, 0.0);
-            const bool pin = (i == 0 && j == 0) || (i == lat.nx && j == 0);
-            if (!p.bottomLateralFree || pin) {
-                if (!p.bottomLateralFree || i == 0) c.add(bottom, 0, 0.0);
-                c.add(bottom, 1, 0.0);
-            }
+            if (!onFace(i, j, 0) || !onFace(i, j, nz)) continue;  // outside a clipped prism's faces
             // Upper face: triangular varies linearly in x from 0 to 1.
-            const double w = p.shape == LoadShape::Uniform ? 1.0 : lat.position(top)[0] / width;
-            weightSum += w;
-            if (!p.topLateralFree) c.add(top, 0, 0.0), c.add(top, 1, 0.0);
-            c.add(top, 2, w);
+            const double w = p.shape == LoadShape::Uniform ? 1.0 : (i * lat.L0) / width;
+            weightSum += w, ++faceNodes;
+            const auto bottom = corner(i, j, 0), top = corner(i, j, nz);
+            if (bottom >= 0) {  // on this rank (its slab holds the lowest layer)
+                bottomNodes.push_back(bottom);
+                // Lower face: vertical DOF fixed; lateral fixed, or on rollers with only
+                // the rigid-body motion pinned (x, y at one corner, y at the next).
+                c.add(bottom, 2, 0.0);
+                const bool pin = (i == 0 && j == 0) || (i == lat.nx && j == 0);
+                if (!p.bottomLateralFree || pin) {
+                    if (!p.bottomLateralFree || i == 0) c.add(bottom, 0, 0.0);
+                    c.add(bottom, 1, 0.0);
+                }
+            }
+            if (top >= 0) {
+                topNodes.push_back(top);
+                if (!p.topLateralFree) c.add(top, 0, 0.0), c.add(top, 1, 0.0);
+                c.add(top, 2, w);
+            }
         }
     Measures& ms = s.measures;
     ms.support = "bottom", ms.loaded = "top", ms.dim = 2;
@@ -96,11 +112,11 @@ Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, 
     if (!moduleMask.empty()) {  // the lower face's own modules
         int kept = 0;
         for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) kept += lat.present(i, j, 0);
+            for (int i = 0; i < nx; ++i) kept += lat.present(i, j, -lat.kOffset);
         ms.area = kept * L0 * L0;
     }
-    ms.gaugeLength = lat.nz * lat.L0;
-    ms.meanDriveWeight = weightSum / topNodes.size();
+    ms.gaugeLength = nz * lat.L0;
+    ms.meanDriveWeight = weightSum / faceNodes;
     return s;
 }
 

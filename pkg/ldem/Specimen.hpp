@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ldem/Lattice.hpp"
@@ -74,7 +75,8 @@ void validate(const Specimen& s);
 // way: a face is its nodes of some module, the area its modules' (a prism's
 // lower and upper faces must have the same nodes). Rollers need the face's
 // two corners (0, 0) and (nx, 0).
+// slab: the module layers [k0, k1) this process owns (Slab.hpp); {0, -1}: all.
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
-                          const std::vector<std::uint8_t>& moduleMask = {});
+                          const std::vector<std::uint8_t>& moduleMask = {}, std::pair<int, int> slab = {0, -1});
 
 }  // namespace ldem

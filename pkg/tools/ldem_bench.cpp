@@ -2,20 +2,26 @@
 // uniform loading), or of the cylinder of diameter and height N modules cut
 // from it (--shape cylinder: a clipped lattice), and print one line of JSON. `ldem bench` runs it; it is a
 // separate program so that its peak resident memory is the run's own, with
-// no interpreter around it.
+// no interpreter around it. Under mpirun each rank times its slab (Slab.hpp):
+// the time per step is the whole lattice's, the memory and the bytes sent
+// per step are those of the rank that uses the most.
 //
 //   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5] [--shape box|cylinder]
+//   mpirun -np 2 ldem-bench --modules 48 --steps 200 --threads 1
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
+#include "ldem/Comm.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/Simulation.hpp"
+#include "ldem/Slab.hpp"
 
 namespace {
 double seconds(std::chrono::steady_clock::time_point t0) {
@@ -77,15 +83,22 @@ int main(int argc, char** argv) {
 
     ldem::RunParams run;
     run.threads = threads;
+    const ldem::Comm& comm = ldem::Comm::world();
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<ldem::Simulation> built;
     try {
         const std::vector<std::uint8_t> mask = shape == "box" ? std::vector<std::uint8_t>{} : cylinderMask(modules);
         built = std::make_unique<ldem::Simulation>(
-            ldem::cubeTestSpecimen(modules, modules, modules, 0.02, ldem::Material{}, ldem::LoadingParams{}, mask),
+            ldem::cubeTestSpecimen(modules, modules, modules, 0.02, ldem::Material{}, ldem::LoadingParams{}, mask,
+                                   ldem::slabLayers(modules, comm.rank(), comm.size())),
             ldem::Material{}, ldem::LoadingParams{}, run);
     } catch (const std::invalid_argument& e) {  // e.g. more memory than the machine has: one line
-        std::fprintf(stderr, "ldem-bench: error: %s\n", e.what());
+        if (comm.root()) std::fprintf(stderr, "ldem-bench: error: %s\n", e.what());
+        ldem::mpiFinalize();
+        return 2;
+    } catch (const std::bad_alloc&) {  // above this process's memory limit (ulimit -v)
+        std::fprintf(stderr, "ldem-bench: error: out of memory for the %d^3 lattice on rank %d of %d: split it over "
+                     "more MPI ranks (mpirun -np P)\n", modules, comm.rank(), comm.size());
         return 2;
     }
     ldem::Simulation& sim = *built;
@@ -95,10 +108,13 @@ int main(int argc, char** argv) {
     // boundary conditions, work and damping bookkeeping), plus the two halves
     // timed apart on a few extra steps.
     std::vector<double> perStep, forces, advance, separation;
+    double bytesPerStep = 0;
     for (int r = 0; r < repeats; ++r) {
+        const std::int64_t sent = comm.bytesSent();
         auto t = std::chrono::steady_clock::now();
         for (int s = 0; s < steps; ++s) sim.step();
         perStep.push_back(seconds(t) / steps);
+        bytesPerStep = double(comm.bytesSent() - sent) / steps;
         double tf = 0, ta = 0;
         for (int s = 0; s < 10; ++s) {
             t = std::chrono::steady_clock::now();
@@ -116,15 +132,24 @@ int main(int argc, char** argv) {
         (void)joined;
         separation.push_back(seconds(t));
     }
-    const double bars = double(sim.lattice().numBars());
-    const long rss = peakResidentBytes();
-    std::printf(
-        "{\"shape\": \"%s\", \"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, \"threads\": %d, "
-        "\"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, \"ns_per_bar_integration\": %.4f, "
-        "\"separation_check_share\": %.4f, \"setup_s\": %.3f, \"peak_rss_bytes\": %ld, \"bytes_per_bar\": %.2f}\n",
-        shape.c_str(), modules, (long long)sim.lattice().numBars(), (long long)sim.lattice().numNodes(), steps, repeats,
-        ldem::maxThreads(), median(perStep) / bars * 1e9, median(forces) / bars * 1e9,
-        median(advance) / bars * 1e9,
-        median(separation) / (ldem::Simulation::kSeparationCheckSteps * median(perStep)), setup, rss, rss / bars);
+    // The whole lattice's bars; the slowest rank's times (every rank waits for it at each step).
+    const auto [firstOwned, endOwned] = sim.lattice().ownedBars();
+    const double bars = double(comm.sum(endOwned - firstOwned));
+    std::int64_t nodes = 0;
+    for (int m = sim.lattice().ownBegin; m < sim.lattice().ownEnd; ++m) nodes += sim.lattice().layerNodes(m).second;
+    nodes = comm.sum(nodes);
+    const double step = comm.max(median(perStep)), force = comm.max(median(forces)), adv = comm.max(median(advance));
+    const double sep = comm.max(median(separation));
+    const double rss = comm.max(double(peakResidentBytes())), sent = comm.max(bytesPerStep);
+    if (comm.root())
+        std::printf(
+            "{\"shape\": \"%s\", \"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, "
+            "\"ranks\": %d, \"threads\": %d, \"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, "
+            "\"ns_per_bar_integration\": %.4f, \"separation_check_share\": %.4f, \"setup_s\": %.3f, "
+            "\"peak_rss_bytes\": %.0f, \"bytes_per_bar\": %.2f, \"bytes_sent_per_rank_step\": %.0f}\n",
+            shape.c_str(), modules, (long long)bars, (long long)nodes, steps, repeats, comm.size(), ldem::maxThreads(),
+            step / bars * 1e9, force / bars * 1e9, adv / bars * 1e9,
+            sep / (ldem::Simulation::kSeparationCheckSteps * step), setup, rss, rss * comm.size() / bars, sent);
+    ldem::mpiFinalize();
     return 0;
 }

@@ -194,7 +194,8 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "separation": _event(sep),
             "fracture_energy_J": summary.fracture_energy,
             "min_fracture_energy_J": u_min,
-            "U_mincut_J": cheapest_cut(sim),
+            # The cheapest cut needs the whole lattice on one process: not under mpirun.
+            "U_mincut_J": None if _core.mpi_launched() else cheapest_cut(sim),
             "energy_balance_error": summary.energy_balance_error,
             "energy_error": summary.energy_error,
             "stop_reason": summary.stop_reason,
@@ -206,8 +207,9 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
                   "fracture_energy_J": float(curve["fracture_J"][-1]), "min_fracture_energy_J": u_min})
     s.update({
         "clamped_bars": sim.clamped_bars,
-        "n_nodes": sim.lattice.n_nodes,
-        "n_bars": sim.lattice.n_bars,
+        "n_nodes": _core.mpi_sum(sim.lattice.n_owned_nodes) if sim.lattice.is_slab else sim.lattice.n_nodes,
+        "n_bars": _core.mpi_sum(sim.lattice.owned_bars[1] - sim.lattice.owned_bars[0]) if sim.lattice.is_slab
+        else sim.lattice.n_bars,
         "steps": sim.steps,
         "dt_s": sim.dt,
         "dt_limit_s": sim.dt_limit,
@@ -217,6 +219,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "ramp_time_s": sim.ramp_time,
         "split_window_s": sim.split_window,
         "threads": _core.max_threads(),  # those the run used: at most the cores (Parallel.hpp)
+        "mpi_ranks": _core.mpi_ranks(),  # processes the lattice was split over (mpirun -np)
         "wall_s": wall_s,
         "provenance": provenance(),
         "parameters": test.parameters(),

@@ -11,6 +11,7 @@ from typing import List, Sequence
 
 import numpy as np
 
+from . import parallel
 
 
 @contextlib.contextmanager
@@ -101,6 +102,9 @@ def write_vtu(sim, path: str, broken_only: bool = False) -> None:
     bars = lat.bar_table()
     kappa, eps_r, state = sim.kappa, sim.eps_r, sim.damage_state
     keep = state == 2 if broken_only else np.ones(len(kappa), dtype=bool)
+    mine = parallel.owned(sim)  # a slab's halo bars are written by their owners
+    keep[:mine.start] = False
+    keep[mine.stop:] = False
     cells = [("line", np.column_stack([bars["n1"], bars["n2"]])[keep].astype(np.int64))]
     per_bar = {
         "damage_state": state.astype(np.int32),
@@ -117,6 +121,28 @@ def write_vtu(sim, path: str, broken_only: bool = False) -> None:
                        cell_data={k: [v[keep]] for k, v in per_bar.items()})
     with atomic(path) as tmp:
         meshio.write(tmp, mesh, file_format="vtu")
+
+
+# The arrays of write_vtu's files: name -> (VTK type, components), for a .pvtu.
+VTU_POINT_ARRAYS = {"displacement": ("Float64", 3)}
+VTU_CELL_ARRAYS = {"damage_state": ("Int32", 1), "damage": ("Float64", 1), "kappa": ("Float64", 1),
+                   "eps_r": ("Float64", 1), "strain": ("Float64", 1), "force": ("Float64", 1), "G_f": ("Float64", 1),
+                   "kind": ("Int32", 1)}
+
+
+def write_bars(sim, path: str, broken_only: bool = False) -> str:
+    """write_vtu; for a lattice split over MPI ranks, this rank's piece (bars_pN.vtu
+    for bars.vtu) and, on rank 0, bars.pvtu naming the pieces. Returns the name
+    of the file ParaView opens (bars.vtu or bars.pvtu)."""
+    if not parallel.split(sim):
+        write_vtu(sim, path, broken_only)
+        return os.path.basename(path)
+    write_vtu(sim, parallel.piece_name(path, parallel.rank()), broken_only)
+    whole = os.path.splitext(path)[0] + ".pvtu"
+    if parallel.is_root():
+        parallel.write_pvtu(whole, [parallel.piece_name(path, r) for r in range(parallel.ranks())],
+                            VTU_POINT_ARRAYS, VTU_CELL_ARRAYS)
+    return os.path.basename(whole)
 
 
 def write_pvd(path: str, frames) -> None:
@@ -145,14 +171,15 @@ class Snapshots:
             self._write(row["mean_strain"], f"bars_{k:04d}.vtu", f"crack_{k:04d}.vtu")
 
     def _write(self, strain, bars, crack):
-        write_vtu(self.sim, os.path.join(self.out, bars))
-        write_vtu(self.sim, os.path.join(self.out, crack), broken_only=True)
+        bars = write_bars(self.sim, os.path.join(self.out, bars))
+        crack = write_bars(self.sim, os.path.join(self.out, crack), broken_only=True)
         self.frames.append((strain, bars, crack))
 
     def finish(self, final_strain: float) -> None:
         self._write(final_strain, "bars.vtu", "crack.vtu")
-        write_pvd(os.path.join(self.out, "bars.pvd"), [(t, b) for t, b, _ in self.frames])
-        write_pvd(os.path.join(self.out, "crack.pvd"), [(t, c) for t, _, c in self.frames])
+        if parallel.is_root():
+            write_pvd(os.path.join(self.out, "bars.pvd"), [(t, b) for t, b, _ in self.frames])
+            write_pvd(os.path.join(self.out, "crack.pvd"), [(t, c) for t, _, c in self.frames])
 
 
 def write_slice(path: str, segments, states) -> None:

@@ -13,6 +13,7 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
+from . import parallel  # noqa: E402
 from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
 
 STYLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ldem.mplstyle")
@@ -90,8 +91,13 @@ def central_slice(sim, axis: int = 1):
     mid = 0.5 * (x[:, axis].min() + x[:, axis].max())
     near = np.abs(x[:, axis] - mid) <= 0.5 * lat.L0 + 1e-12
     keep = near[n1] & near[n2]
+    mine = parallel.owned(sim)  # split over MPI ranks (a cut normal to z): each rank's own bars, gathered
+    keep[:mine.start] = False
+    keep[mine.stop:] = False
     plane = [a for a in range(3) if a != axis]
     seg = np.stack([x[n1[keep]][:, plane], x[n2[keep]][:, plane]], axis=1)
+    if parallel.split(sim):
+        return parallel.gather_arrays([seg, sim.damage_state[keep]])  # None on ranks other than 0
     return seg, sim.damage_state[keep]
 
 
@@ -132,4 +138,7 @@ def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
 
 
 def crack_figure(sim, path: str, title: str = "") -> None:
-    crack_figure_from_slice(*central_slice(sim), path, title)
+    """The central slice's bars by damage state (under MPI: every rank calls it, rank 0 draws)."""
+    piece = central_slice(sim)
+    if piece is not None:
+        crack_figure_from_slice(*piece, path, title)

@@ -10,7 +10,7 @@ import contextlib
 import os
 from typing import Optional, Sequence
 
-from . import io
+from . import io, parallel
 from .cube import CubeResult, CubeTest
 from .progress import ProgressBar
 
@@ -35,14 +35,17 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         raise ValueError(f"checkpoint interval must be >= 0 rows (got {checkpoint_every})")
     if (restart or checkpoint_every) and out is None:
         raise ValueError("checkpoints need an output folder")
+    if (restart or checkpoint_every) and parallel.ranks() > 1:
+        raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
     if out is not None:
         io.prepare_dir(out)
     sim = simulation if simulation is not None else test.simulation()
     previous = []
     if restart:
         previous = _restore(test, sim, out)
-    bar = ProgressBar(test.final_strain, enabled=progress, energy_tolerance=test.energy_tolerance)
-    csv = io.CurveCsv(os.path.join(out, "curve.csv"), append=restart) if out is not None else None
+    root = parallel.is_root()  # under MPI, rank 0 writes the files every rank has (the curve, the summary)
+    bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance)
+    csv = io.CurveCsv(os.path.join(out, "curve.csv"), append=restart) if out is not None and root else None
     series = io.Snapshots(sim, out, [s for s in snapshots if not previous or s > previous[-1]["mean_strain"]]) \
         if out is not None and plots else None
     saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters()) \
@@ -52,7 +55,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         result = test.run(everyone, simulation=sim, previous_rows=previous)
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
-        if out is not None and partial is not None:
+        if out is not None and partial is not None and root:
             _summary_after_failure(partial.summary, out)
         raise
     finally:
@@ -67,9 +70,11 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         except BaseException as e:  # the run is done, its outputs are not: the summary says so
             result.summary.update(status="interrupted" if isinstance(e, KeyboardInterrupt) else "failed",
                                   error=f"writing the outputs: {e}")
-            _summary_after_failure(result.summary, out)
+            if root:
+                _summary_after_failure(result.summary, out)
             raise
-        io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
+        if root:
+            io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
     return result
 
 
@@ -99,8 +104,9 @@ def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:
 
     if fmt not in plots.FIGURE_FORMATS:
         raise ValueError(f"unknown figure format '{fmt}' (expected one of {', '.join(plots.FIGURE_FORMATS)})")
-    plots.curve_figure(result, os.path.join(out, f"curve.{fmt}"))
-    plots.energy_figure(result, os.path.join(out, f"energies.{fmt}"))
+    if parallel.is_root():
+        plots.curve_figure(result, os.path.join(out, f"curve.{fmt}"))
+        plots.energy_figure(result, os.path.join(out, f"energies.{fmt}"))
     plots.crack_figure(result.sim, os.path.join(out, f"cracks.{fmt}"),
                        title=f"{result.test.describe()}: "
                              f"mean strain {result.curve['mean_strain'][-1]:.2e}")

@@ -16,6 +16,7 @@
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
+#include "ldem/Comm.hpp"
 #include "ldem/Simulation.hpp"
 
 namespace py = pybind11;
@@ -97,6 +98,32 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "ldem C++ core: truss-like lattice DEM (Riera-Iturrioz) for brittle fracture";
 
     py::register_exception<InstabilityError>(m, "InstabilityError", PyExc_RuntimeError);
+
+    // Under mpirun, MPI starts at the first use of the ranks (a cube's
+    // Simulation: each rank builds and runs only its slab, pkg/ldem/Slab.hpp)
+    // and ends with the interpreter.
+    py::module_::import("atexit").attr("register")(py::cpp_function([] { mpiFinalize(); }));
+    m.def("mpi_rank", [] { return Comm::world().rank(); }, "this process's MPI rank (0 without mpirun)");
+    m.def("mpi_ranks", [] { return Comm::world().size(); }, "the number of MPI ranks (1 without mpirun)");
+    m.def("mpi_launched", &mpiLaunched, "whether this process was started by mpirun");
+    m.def("mpi_available", &mpiAvailable, "whether this build of ldem can run under MPI");
+    m.def("mpi_sum", [](std::int64_t v) { return Comm::world().sum(v); }, py::arg("value"),
+          "the sum of value over the ranks (every rank must call it)");
+    m.def("mpi_gather_bytes", [](const py::bytes& b) {
+        // Every rank's bytes on rank 0, in rank order (empty list elsewhere): small outputs (crack pictures).
+        const std::string str = b;
+        const std::vector<std::int64_t> mine(str.begin(), str.end());
+        std::vector<std::int64_t> sizes = Comm::world().gather({std::int64_t(mine.size())});
+        const std::vector<std::int64_t> all = Comm::world().gather(mine);
+        py::list out;
+        std::size_t at = 0;
+        for (std::int64_t n : sizes) {
+            std::string piece(std::size_t(n), '\0');
+            for (std::int64_t k = 0; k < n; ++k) piece[std::size_t(k)] = char(all[at++]);
+            out.append(py::bytes(piece));
+        }
+        return out;
+    }, py::arg("data"));
 
     // The parameters: one table (pkg/ldem/Parameters.hpp); each struct's
     // attributes, their defaults and checks are read from it.
@@ -224,6 +251,16 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("ny", &Lattice::ny)
         .def_readonly("nz", &Lattice::nz)
         .def_readonly("L0", &Lattice::L0)
+        .def_readonly("k_offset", &Lattice::kOffset, "global module layer of this box's lowest (0 unless a slab)")
+        .def_readonly("nz_total", &Lattice::nzTotal, "module layers of the whole lattice")
+        .def_property_readonly("owned_bars", &Lattice::ownedBars,
+                               "(first, end): the bars this rank owns (all of them unless a slab)")
+        .def_property_readonly("is_slab", &Lattice::isSlab)
+        .def_property_readonly("n_owned_nodes", [](const Lattice& l) {
+            std::int64_t n = 0;
+            for (int m = l.ownBegin; m < l.ownEnd; ++m) n += l.layerNodes(m).second;
+            return n;
+        })
         .def_property_readonly("n_nodes", &Lattice::numNodes)
         .def_property_readonly("n_bars", &Lattice::numBars)
         .def_property_readonly("x0", [](const Lattice& l) { return toNumpy(nodePositions(l)[0]); })
@@ -399,6 +436,8 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("rupture_energy", [](const Simulation& s) { return toNumpy(s.ruptureEnergies()); },
                                "energy each bar dissipates when it breaks [J] (A_f G_f; 1/2 L EA eps_p^2 if clamped)")
         .def_property_readonly("kappa", [](const Simulation& s) { return toNumpy(s.bars().kappa); })
+        .def_property_readonly("bytes_sent", [](const Simulation&) { return Comm::world().bytesSent(); },
+                               "bytes this rank has sent to its neighbours (halo exchanges)")
         .def_property_readonly("eps_r", [](const Simulation& s) { return toNumpy(s.bars().epsR); })
         .def_property_readonly("eps_p", [](const Simulation& s) { return s.bars().epsP; })
         .def_property_readonly(

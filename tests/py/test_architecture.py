@@ -11,7 +11,7 @@ PACKAGE = os.path.join(ROOT, "py", "ldem")
 LAYERS = [
     {"ldem._core"},
     {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.yade"},  # specimen and run
-    {"ldem.io", "ldem.progress", "ldem.plots", "ldem.report", "ldem.helptext"},  # writers, pictures, reports
+    {"ldem.io", "ldem.parallel", "ldem.progress", "ldem.plots", "ldem.report", "ldem.helptext"},  # writers, pictures, reports
     {"ldem.runner"},                                                   # a run wired to its files
     {"ldem.study"},                                                    # ldem.study.* included
     {"ldem.cli", "ldem.bench", "ldem.scene"},                                        # the edges: command line, scene scripts

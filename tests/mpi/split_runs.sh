@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Runs one cube with `ldem cube` under mpirun on each number of ranks given,
+# then checks the results are the same bit for bit (same_run.py).
+#   split_runs.sh OUT "1 2 3" [ldem cube options...]
+# The environment gives the package under test (PYTHONPATH, CTest sets it).
+set -euo pipefail
+out=$1 ranks=$2
+shift 2
+here=$(cd "$(dirname "$0")" && pwd)
+# mpirun refuses root unless told; oversubscribed ranks yield the core while they wait.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+rm -rf "$out"
+dirs=()
+for p in $ranks; do
+  mpirun --oversubscribe --quiet -np "$p" /usr/bin/python3 -m ldem cube --threads 1 --out "$out/np$p" "$@" \
+    > "$out.np$p.log" 2>&1 || { cat "$out.np$p.log"; exit 1; }
+  grep -E "^(peak|separated|NOT)" "$out.np$p.log" | sed "s/^/np $p: /"
+  dirs+=("$out/np$p")
+done
+/usr/bin/python3 "$here/same_run.py" "${dirs[@]}"
