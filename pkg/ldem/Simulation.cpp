@@ -101,6 +101,10 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         }
         bars_ = BarState(lat_, mat_.epsP, std::move(epsR));
         clamped_ = commOf(lat_).sum(clamped_);
+        const auto [first, end] = lat_.ownedBars();
+        std::int64_t nodes = 0;
+        for (int m = lat_.ownBegin; m < lat_.ownEnd; ++m) nodes += lat_.layerNodes(m).second;
+        totalBars_ = commOf(lat_).sum(end - first), totalNodes_ = commOf(lat_).sum(nodes);
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     cd_ = CentralDifference(dt_, Df_);
@@ -311,7 +315,8 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         }
         // The record is complete: what the observer sees (and may checkpoint) is state n with its events.
         g.pendingAdvance = true;
-        const bool keepGoing = !observer || observer(p);
+        // Rank 0's answer for every rank (an observer that stops on one rank alone would leave the others waiting).
+        const bool keepGoing = commOf(lat_).broadcast(!observer || observer(p));
         g.pendingAdvance = false;
         if (s.separation.reached()) s.stopReason = "separated";
         else if (run_.stopAt == StopAt::LoadLoss && s.loadLoss.reached()) s.stopReason = "load_lost";

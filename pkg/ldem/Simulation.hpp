@@ -175,6 +175,9 @@ public:
     double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }
     std::int64_t clampedBars() const { return clamped_; }
+    // Bars and nodes of the whole lattice (of all ranks' slabs under MPI).
+    std::int64_t totalBars() const { return totalBars_; }
+    std::int64_t totalNodes() const { return totalNodes_; }
     std::int64_t stepCount() const { return step_; }
     int recordEvery() const { return recordEvery_; }
     double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
@@ -211,7 +214,7 @@ private:
     std::vector<double> layerDamping_;  // damping work of each node layer in the current step
     double externalWork_ = 0, dampingWork_ = 0;
     double stressBefore_ = 0;  // supportStress() of the state the last step started from
-    std::int64_t step_ = 0, clamped_ = 0;
+    std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
     int recordEvery_ = 1;
     RunProgress progress_;
 };

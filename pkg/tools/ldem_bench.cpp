@@ -133,11 +133,8 @@ int main(int argc, char** argv) {
         separation.push_back(seconds(t));
     }
     // The whole lattice's bars; the slowest rank's times (every rank waits for it at each step).
-    const auto [firstOwned, endOwned] = sim.lattice().ownedBars();
-    const double bars = double(comm.sum(endOwned - firstOwned));
-    std::int64_t nodes = 0;
-    for (int m = sim.lattice().ownBegin; m < sim.lattice().ownEnd; ++m) nodes += sim.lattice().layerNodes(m).second;
-    nodes = comm.sum(nodes);
+    const double bars = double(sim.totalBars());
+    const std::int64_t nodes = sim.totalNodes();
     const double step = comm.max(median(perStep)), force = comm.max(median(forces)), adv = comm.max(median(advance));
     const double sep = comm.max(median(separation));
     const double rss = comm.max(double(peakResidentBytes())), sent = comm.max(bytesPerStep);

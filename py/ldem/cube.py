@@ -207,9 +207,8 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
                   "fracture_energy_J": float(curve["fracture_J"][-1]), "min_fracture_energy_J": u_min})
     s.update({
         "clamped_bars": sim.clamped_bars,
-        "n_nodes": _core.mpi_sum(sim.lattice.n_owned_nodes) if sim.lattice.is_slab else sim.lattice.n_nodes,
-        "n_bars": _core.mpi_sum(sim.lattice.owned_bars[1] - sim.lattice.owned_bars[0]) if sim.lattice.is_slab
-        else sim.lattice.n_bars,
+        "n_nodes": sim.total_nodes,  # of the whole lattice, also when split over MPI ranks
+        "n_bars": sim.total_bars,
         "steps": sim.steps,
         "dt_s": sim.dt,
         "dt_limit_s": sim.dt_limit,

@@ -107,8 +107,6 @@ PYBIND11_MODULE(_core, m) {
     m.def("mpi_ranks", [] { return Comm::world().size(); }, "the number of MPI ranks (1 without mpirun)");
     m.def("mpi_launched", &mpiLaunched, "whether this process was started by mpirun");
     m.def("mpi_available", &mpiAvailable, "whether this build of ldem can run under MPI");
-    m.def("mpi_sum", [](std::int64_t v) { return Comm::world().sum(v); }, py::arg("value"),
-          "the sum of value over the ranks (every rank must call it)");
     m.def("mpi_gather_bytes", [](const py::bytes& b) {
         // Every rank's bytes on rank 0, in rank order (empty list elsewhere): small outputs (crack pictures).
         const std::string str = b;
@@ -256,11 +254,6 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("owned_bars", &Lattice::ownedBars,
                                "(first, end): the bars this rank owns (all of them unless a slab)")
         .def_property_readonly("is_slab", &Lattice::isSlab)
-        .def_property_readonly("n_owned_nodes", [](const Lattice& l) {
-            std::int64_t n = 0;
-            for (int m = l.ownBegin; m < l.ownEnd; ++m) n += l.layerNodes(m).second;
-            return n;
-        })
         .def_property_readonly("n_nodes", &Lattice::numNodes)
         .def_property_readonly("n_bars", &Lattice::numBars)
         .def_property_readonly("x0", [](const Lattice& l) { return toNumpy(nodePositions(l)[0]); })
@@ -402,6 +395,8 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("resumable", &Simulation::resumable,
                                "restored (or stopped within its observer): run() continues it")
         .def_property_readonly("clamped_bars", &Simulation::clampedBars)
+        .def_property_readonly("total_bars", &Simulation::totalBars, "bars of the whole lattice (all MPI ranks)")
+        .def_property_readonly("total_nodes", &Simulation::totalNodes, "nodes of the whole lattice (all MPI ranks)")
         .def_property_readonly("steps", &Simulation::stepCount)
         .def_property_readonly("record_every", &Simulation::recordEvery)
         .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)

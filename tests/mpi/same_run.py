@@ -1,5 +1,5 @@
 """Checks that runs of one cube split over different numbers of MPI ranks gave
-the same results, bit for bit: curve.csv byte-identical, summary.json equal
+the same results, bit for bit: curve.csv and cracks.png byte-identical, summary.json equal
 but for when, where and how it ran, and the bars of bars.vtu (one process) or
 bars.pvtu (its pieces, in rank order) equal: ends, state, damage, strain,
 force, G_f. Usage: same_run.py DIR DIR... (the first is the reference); exit 1
@@ -37,9 +37,10 @@ def bars(folder):
 
 
 def differences(ref, other):
-    with open(os.path.join(ref, "curve.csv"), "rb") as a, open(os.path.join(other, "curve.csv"), "rb") as b:
-        if a.read() != b.read():
-            yield "curve.csv differs"
+    for name in ("curve.csv", "cracks.png"):  # the crack picture: drawn by rank 0 from the ranks' slices
+        with open(os.path.join(ref, name), "rb") as a, open(os.path.join(other, name), "rb") as b:
+            if a.read() != b.read():
+                yield f"{name} differs"
     sa, sb = (json.load(open(os.path.join(d, "summary.json"))) for d in (ref, other))
     for key in sorted((set(sa) | set(sb)) - VOLATILE):
         if sa.get(key) != sb.get(key):

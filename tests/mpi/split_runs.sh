@@ -18,3 +18,8 @@ for p in $ranks; do
   dirs+=("$out/np$p")
 done
 /usr/bin/python3 "$here/same_run.py" "${dirs[@]}"
+# ParaView opens the parallel file of the largest split, with every bar.
+last=${dirs[${#dirs[@]}-1]}
+if [ -e "$last/bars.pvtu" ]; then
+  xvfb-run -a -s "-noreset -screen 0 640x480x24" pvbatch "$here/pvtu_cells.py" "$last"
+fi
