@@ -6,7 +6,9 @@
 #   bash scripts/bench_mpi.sh [RUNS=5] [MODULES=48]
 set -euo pipefail
 runs=${1:-5} modules=${2:-48}
-bench=$(command -v ldem-bench || echo "$(dirname "$0")/../build/pkg/ldem-bench")
+# The build tree's ldem-bench if there is one (an installed one may be older), else the installed one.
+bench="$(dirname "$0")/../build/pkg/ldem-bench"
+[ -x "$bench" ] || bench=$(command -v ldem-bench)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 out=$(mktemp)
 for r in $(seq "$runs"); do

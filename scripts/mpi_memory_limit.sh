@@ -6,7 +6,9 @@
 # (from a build tree: build/pkg/ldem-bench; installed: ldem-bench on PATH)
 set -uo pipefail
 limit=${1:-130000} modules=${2:-64}
-bench=$(command -v ldem-bench || echo "$(dirname "$0")/../build/pkg/ldem-bench")
+# The build tree's ldem-bench if there is one (an installed one may be older), else the installed one.
+bench="$(dirname "$0")/../build/pkg/ldem-bench"
+[ -x "$bench" ] || bench=$(command -v ldem-bench)
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
 # One malloc arena: glibc reserves 64 MB of address space for each thread's
 # arena, which would count against the limit without being used.

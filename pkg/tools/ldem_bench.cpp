@@ -61,8 +61,22 @@ std::vector<std::uint8_t> cylinderMask(int n) {
 }
 }  // namespace
 
+static int bench(int argc, char** argv, int& modules);
+
 int main(int argc, char** argv) {
-    int modules = 24, steps = 200, threads = 0, repeats = 5;
+    int modules = 0;
+    try {
+        return bench(argc, argv, modules);
+    } catch (const std::bad_alloc&) {  // above this process's memory limit (ulimit -v), set-up or steps
+        std::fprintf(stderr, "ldem-bench: error: out of memory for the %d^3 lattice on rank %d of %d: split it over "
+                     "more MPI ranks (mpirun -np P)\n", modules, ldem::Comm::world().rank(), ldem::Comm::world().size());
+        return 2;
+    }
+}
+
+static int bench(int argc, char** argv, int& modules) {
+    modules = 24;
+    int steps = 200, threads = 0, repeats = 5;
     std::string shape = "box";
     for (int a = 1; a < argc; ++a) {
         const std::string key = argv[a];
@@ -95,10 +109,6 @@ int main(int argc, char** argv) {
     } catch (const std::invalid_argument& e) {  // e.g. more memory than the machine has: one line
         if (comm.root()) std::fprintf(stderr, "ldem-bench: error: %s\n", e.what());
         ldem::mpiFinalize();
-        return 2;
-    } catch (const std::bad_alloc&) {  // above this process's memory limit (ulimit -v)
-        std::fprintf(stderr, "ldem-bench: error: out of memory for the %d^3 lattice on rank %d of %d: split it over "
-                     "more MPI ranks (mpirun -np P)\n", modules, comm.rank(), comm.size());
         return 2;
     }
     ldem::Simulation& sim = *built;
