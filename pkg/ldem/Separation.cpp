@@ -44,13 +44,14 @@ namespace {
 // some rank are joined; a and b are joined if a root of a's and one of b's meet.
 bool joinedAcrossRanks(const std::vector<std::int64_t>& msg) {
     std::unordered_map<std::int64_t, std::int64_t> parent;
-    auto find = [&](std::int64_t i) {
-        auto it = parent.try_emplace(i, i).first;
-        while (it->second != i) {
-            i = it->second;
-            it = parent.try_emplace(i, i).first;
+    auto find = [&](std::int64_t i) {  // the root of i, with the path to it made direct
+        std::int64_t root = i;
+        while (parent.try_emplace(root, root).first->second != root) root = parent[root];
+        while (i != root) {
+            const std::int64_t next = parent[i];
+            parent[i] = root, i = next;
         }
-        return i;
+        return root;
     };
     std::vector<std::int64_t> rootsA, rootsB;
     for (std::size_t at = 0; at < msg.size();) {

@@ -37,8 +37,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     run_.validate();
     validate(specimen);
     if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
-        throw std::invalid_argument("under mpirun, only the cube test is split into slabs (ldem cube); run "
-                                    "other specimens in one process");
+        throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
     setThreads(run_.threads);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
@@ -100,11 +99,10 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
             }
         }
         bars_ = BarState(lat_, mat_.epsP, std::move(epsR));
-        clamped_ = commOf(lat_).sum(clamped_);
-        const auto [first, end] = lat_.ownedBars();
+        clamped_ = commOf(lat_).sum(clamped_);  // each bar counted by the rank that owns it
         std::int64_t nodes = 0;
         for (int m = lat_.ownBegin; m < lat_.ownEnd; ++m) nodes += lat_.layerNodes(m).second;
-        totalBars_ = commOf(lat_).sum(end - first), totalNodes_ = commOf(lat_).sum(nodes);
+        totalBars_ = commOf(lat_).sum(owned.second - owned.first), totalNodes_ = commOf(lat_).sum(nodes);
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     cd_ = CentralDifference(dt_, Df_);
@@ -146,7 +144,8 @@ const std::vector<std::int32_t>& Simulation::group(const std::string& name) cons
 
 double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     const std::vector<double>& f = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
-    return listSum(lat_, nodes.size(), [&](std::size_t k) { return nodes[k]; }, [&](std::size_t k) { return f[nodes[k]]; });
+    return listSum(lat_, nodes.size(), [&](std::size_t k) { return nodes[k]; },
+                   [&](std::size_t k) { return f[nodes[k]]; });
 }
 
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
@@ -154,12 +153,16 @@ double Simulation::supportStress() const { return (0.0 + meas_.sense() * groupFo
 
 bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
 
-// u[b] - u[a], read on the ranks that own b and a (the sum of +u[b] and -u[a] is exact in either order).
+// u[b] - u[a], read on the ranks that own b and a (a slab's probe node held
+// elsewhere is -1); the sum of +u[b] and -u[a] is exact in either order.
 double Simulation::probe(const Probe& q) const {
     const std::vector<double>& u = q.dim == 0 ? u_.x : q.dim == 1 ? u_.y : u_.z;
-    const std::int32_t nodes[2] = {q.b, q.a};
-    return listSum(lat_, q.a >= 0 ? 2 : 1, [&](std::size_t k) { return nodes[k]; },
-                   [&](std::size_t k) { return k == 0 ? u[q.b] : -u[q.a]; });
+    std::int32_t nodes[2];
+    double values[2];
+    std::size_t n = 0;
+    if (q.b >= 0) nodes[n] = q.b, values[n++] = u[q.b];
+    if (q.a >= 0) nodes[n] = q.a, values[n++] = -u[q.a];
+    return listSum(lat_, n, [&](std::size_t k) { return nodes[k]; }, [&](std::size_t k) { return values[k]; });
 }
 
 CurvePoint Simulation::measure() const {

@@ -50,12 +50,51 @@ void validate(const Specimen& s) {
         fail("the loaded group is not driven along the measured direction (mean drive weight 0)");
     for (const Probe& q : m.probes) {
         if (q.a >= 0) checkNode(q.a, "probe '" + q.name + "'");
-        checkNode(q.b, "probe '" + q.name + "'");
+        if (q.b >= 0 || !s.lattice.isSlab()) checkNode(q.b, "probe '" + q.name + "'");  // -1: on another rank
         if (q.dim < 0 || q.dim > 2) fail("probe '" + q.name + "' has direction " + std::to_string(q.dim));
     }
     if (m.control < -1 || m.control >= int(m.probes.size()))
         fail("the controlled probe " + std::to_string(m.control) + " is not one of the " +
              std::to_string(m.probes.size()) + " probes");
+}
+
+Specimen specimenSlab(int nx, int ny, int nz, double L0, const Material& m,
+                      const std::vector<std::uint8_t>& moduleMask,
+                      const std::map<std::string, std::vector<std::int32_t>>& groups,
+                      const std::vector<std::int32_t>& node, const std::vector<std::uint8_t>& dim,
+                      const std::vector<double>& weight, const Measures& measures, std::pair<int, int> slab) {
+    const std::int64_t whole = expectedNodeCount(nx, ny, nz);
+    auto checked = [&](std::int32_t id, const std::string& where) {
+        if (id < 0 || id >= whole)
+            throw std::invalid_argument("specimen: " + where + " names node " + std::to_string(id) +
+                                        " (the lattice has " + std::to_string(whole) + " nodes)");
+        return id;
+    };
+    // Checked whole, so that every rank finds the same errors (a DOF listed twice, a bad direction or weight).
+    makePrescribed(whole, node, dim, weight);
+    Specimen s;
+    const auto [k0, k1] = slab.second < 0 ? std::pair<int, int>{0, nz} : slab;
+    s.lattice = buildSlab(nx, ny, nz, L0, m, moduleMask, k0, k1);
+    const Lattice& lat = s.lattice;
+    for (const auto& [name, ids] : groups) {
+        if (ids.empty()) throw std::invalid_argument("specimen: group '" + name + "' has no node");
+        std::vector<std::int32_t>& mine = s.groups[name];
+        for (auto id : ids)
+            if (const auto n = lat.localNode(checked(id, "group '" + name + "'")); n >= 0) mine.push_back(n);
+    }
+    std::vector<std::int32_t> localNode;
+    std::vector<std::uint8_t> localDim;
+    std::vector<double> localWeight;
+    for (std::size_t k = 0; k < node.size(); ++k)
+        if (const auto n = lat.localNode(checked(node[k], "a prescribed DOF")); n >= 0)
+            localNode.push_back(n), localDim.push_back(dim[k]), localWeight.push_back(weight[k]);
+    s.prescribed = makePrescribed(lat.numNodes(), localNode, localDim, localWeight);
+    s.measures = measures;
+    for (Probe& q : s.measures.probes) {
+        q.b = lat.localNode(checked(q.b, "probe '" + q.name + "'"));
+        if (q.a >= 0) q.a = lat.localNode(checked(q.a, "probe '" + q.name + "'"));
+    }
+    return s;
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,

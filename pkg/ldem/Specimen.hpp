@@ -79,4 +79,17 @@ void validate(const Specimen& s);
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
                           const std::vector<std::uint8_t>& moduleMask = {}, std::pair<int, int> slab = {0, -1});
 
+// A specimen described on the whole nx x ny x nz lattice (moduleMask as
+// buildLattice; groups, prescribed DOFs and probes by the whole lattice's node
+// ids), built as the slab [k0, k1) of it (Slab.hpp; {0, -1}: all of it): the
+// groups and DOFs keep their nodes in the slab's box, with its local ids; a
+// probe's node that is not there becomes -1 (its owner reads it). Throws
+// std::invalid_argument on a node id outside the whole lattice.
+Specimen specimenSlab(int nx, int ny, int nz, double L0, const Material& m,
+                      const std::vector<std::uint8_t>& moduleMask,
+                      const std::map<std::string, std::vector<std::int32_t>>& groups,
+                      const std::vector<std::int32_t>& node, const std::vector<std::uint8_t>& dim,
+                      const std::vector<double>& weight, const Measures& measures,
+                      std::pair<int, int> slab = {0, -1});
+
 }  // namespace ldem

@@ -265,7 +265,7 @@ def main(argv=None) -> int:
         sys.stdout = open(os.devnull, "w")
     try:
         return args.func(args)
-    except ValueError as e:  # bad input, found before anything runs (by every rank alike)
+    except ValueError as e:  # bad input, found before anything runs (every MPI rank finds the same: rank 0 says it)
         if rank == 0:
             print(f"ldem {args.command}: error: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT

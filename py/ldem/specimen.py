@@ -44,12 +44,25 @@ _MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control
 
 
 class Nodes:
-    def __init__(self, lattice):  # the present nodes (mass > 0), their coordinates, the box
-        self.x = np.column_stack([lattice.x0, lattice.y0, lattice.z0])
-        self.present = np.asarray(lattice.mass) > 0
-        self.lo, self.hi = self.x.min(axis=0), self.x.max(axis=0)
-        self.tol = 1e-6 * lattice.L0
-        self.L0 = lattice.L0
+    """The nodes of the box of n modules of side L0, numbered as the lattice numbers
+    them (corners x-fastest, then centres), their coordinates and which belong to a
+    kept module (mask[i, j, k]): computed, not built, so that no process needs the
+    whole lattice (under MPI each rank builds its slab, pkg/ldem/Slab.hpp)."""
+
+    def __init__(self, n, L0, mask):
+        def grid(counts, offset):  # (i, j, k) L0 of every node of a grid, x fastest
+            k, j, i = np.meshgrid(*(np.arange(c) for c in reversed(counts)), indexing="ij")
+            return np.column_stack([(a.ravel() + offset) * L0 for a in (i, j, k)])
+        nx, ny, nz = n
+        self.x = np.vstack([grid((nx + 1, ny + 1, nz + 1), 0), grid((nx, ny, nz), 0.5)])
+        padded = np.pad(mask.astype(bool), 1)
+        corner = np.zeros((nx + 1, ny + 1, nz + 1), dtype=bool)  # a corner of some kept module
+        for d in np.ndindex(2, 2, 2):
+            corner |= padded[d[0]:d[0] + nx + 1, d[1]:d[1] + ny + 1, d[2]:d[2] + nz + 1]
+        self.present = np.concatenate([corner.transpose(2, 1, 0).ravel(), mask.astype(bool).transpose(2, 1, 0).ravel()])
+        self.lo, self.hi = self.x.min(axis=0), self.x.max(axis=0)  # the box's
+        self.tol = 1e-6 * L0
+        self.L0 = L0
 
 
 def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
@@ -125,10 +138,7 @@ class Build:
         self.L0, self.n, self.mask = module_mask(data["shape"], where)
         self.params["L0"] = self.L0
         self.params["size"] = self.L0 * self.n[0]
-        p = self.cpp_params()
-        self.lattice = _core.build_lattice(*self.n, self.L0, p.material,
-                                           np.ascontiguousarray(self.mask.transpose(2, 1, 0)).ravel().astype(np.uint8))
-        nodes = Nodes(self.lattice)
+        nodes = Nodes(self.n, self.L0, self.mask)
         self.groups, owner = {}, {}
         node, dim, weight = [], [], []
         for name, spec in data["groups"].items():
@@ -289,8 +299,9 @@ class SpecimenTest:
     def simulation(self):
         b = self.build
         p = b.cpp_params()
-        return _core.Simulation(b.lattice, {k: v.astype(np.int32) for k, v in b.groups.items()}, *b.prescribed,
-                                b.measures, p.material, p.loading, p.run)
+        mask = np.ascontiguousarray(b.mask.transpose(2, 1, 0)).ravel().astype(np.uint8)  # [i + nx (j + ny k)]
+        return _core.Simulation(*b.n, b.L0, mask, {k: v.astype(np.int32) for k, v in b.groups.items()},
+                                *b.prescribed, b.measures, p.material, p.loading, p.run)
 
     def run(self, observers=(), simulation=None, previous_rows=()) -> CubeResult:
         """The run to its stop rule (separation of the support and loaded

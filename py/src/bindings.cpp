@@ -17,6 +17,7 @@
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
 #include "ldem/Comm.hpp"
+#include "ldem/Slab.hpp"
 #include "ldem/Simulation.hpp"
 
 namespace py = pybind11;
@@ -317,15 +318,12 @@ PYBIND11_MODULE(_core, m) {
                  return std::make_unique<Simulation>(p);
              }),
              py::arg("params"), "the cube test of params (ldem.CubeTest builds them)")
-        .def(py::init([](Lattice lattice, const std::map<std::string, std::vector<std::int32_t>>& groups,
+        .def(py::init([](int nx, int ny, int nz, double L0, const std::vector<std::uint8_t>& moduleMask,
+                         const std::map<std::string, std::vector<std::int32_t>>& groups,
                          const std::vector<std::int32_t>& node, const std::vector<std::uint8_t>& dim,
                          const std::vector<double>& weight, const py::dict& measures, const Material& mat,
                          const LoadingParams& load, const RunParams& run) {
-                 Specimen sp;
-                 sp.prescribed = makePrescribed(lattice.numNodes(), node, dim, weight);
-                 sp.lattice = std::move(lattice);
-                 sp.groups = groups;
-                 Measures& ms = sp.measures;
+                 Measures ms;
                  ms.support = measures["support"].cast<std::string>();
                  ms.loaded = measures["loaded"].cast<std::string>();
                  ms.dim = measures["dim"].cast<int>();
@@ -340,13 +338,20 @@ PYBIND11_MODULE(_core, m) {
                      }
                  if (measures.contains("control")) ms.control = measures["control"].cast<int>();
                  py::gil_scoped_release release;
-                 return std::make_unique<Simulation>(std::move(sp), mat, load, run);
+                 // Under mpirun, this rank's slab only (pkg/ldem/Slab.hpp).
+                 const Comm& world = Comm::world();
+                 return std::make_unique<Simulation>(
+                     specimenSlab(nx, ny, nz, L0, mat, moduleMask, groups, node, dim, weight, ms,
+                                  slabLayers(nz, world.rank(), world.size())),
+                     mat, load, run);
              }),
-             py::arg("lattice"), py::arg("groups"), py::arg("prescribed_node"), py::arg("prescribed_dim"),
-             py::arg("prescribed_weight"), py::arg("measures"), py::arg("material"), py::arg("loading"), py::arg("run"),
-             "any specimen: a lattice (build_lattice), named node groups, prescribed DOFs u[node][dim] = weight x "
-             "U(t), and measures {support, loaded, dim, area, gauge_length, mean_drive_weight, probes: [(name, a, "
-             "b, dim)], control: index of the probe held to opening_rate, or -1} (ldem.specimen builds them from a file)")
+             py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("module_mask"), py::arg("groups"),
+             py::arg("prescribed_node"), py::arg("prescribed_dim"), py::arg("prescribed_weight"), py::arg("measures"),
+             py::arg("material"), py::arg("loading"), py::arg("run"),
+             "any specimen: the nx x ny x nz lattice of the modules of module_mask (as build_lattice), named node "
+             "groups, prescribed DOFs u[node][dim] = weight x U(t), and measures {support, loaded, dim, area, "
+             "gauge_length, mean_drive_weight, probes: [(name, a, b, dim)], control: index of the probe held to "
+             "opening_rate, or -1}, node ids of the whole lattice (ldem.specimen builds them from a file)")
         .def(
             "run",
             [](Simulation& s, py::object callback) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs one cube with `ldem cube` under mpirun on each number of ranks given,
-# then checks the results are the same bit for bit (same_run.py).
-#   split_runs.sh OUT "1 2 3" [ldem cube options...]
+# Runs one specimen (`ldem cube ...` or `ldem run FILE ...`) under mpirun on
+# each number of ranks given, then checks the results are the same bit for bit
+# (same_run.py), and that ParaView opens the largest split's bars.pvtu.
+#   split_runs.sh OUT "1 2 3" cube|run [FILE] [options...]
 # The environment gives the package under test (PYTHONPATH, CTest sets it).
 set -euo pipefail
 out=$1 ranks=$2
@@ -12,7 +13,7 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yi
 rm -rf "$out"
 dirs=()
 for p in $ranks; do
-  mpirun --oversubscribe --quiet -np "$p" /usr/bin/python3 -m ldem cube --threads 1 --out "$out/np$p" "$@" \
+  mpirun --oversubscribe --quiet -np "$p" /usr/bin/python3 -m ldem "$@" --out "$out/np$p" \
     > "$out.np$p.log" 2>&1 || { cat "$out.np$p.log"; exit 1; }
   grep -E "^(peak|separated|NOT)" "$out.np$p.log" | sed "s/^/np $p: /"
   dirs+=("$out/np$p")
