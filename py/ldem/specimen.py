@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _core
 from .cube import PARAMETERS, CubeResult, run_test
-from .shapes import AXES, SpecimenError, Where, check_keys, module_mask, named, number, point
+from .shapes import AXES, Nodes, SpecimenError, Where, check_keys, module_mask, named, number, point
 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
 # Cube-only parameters: a specimen says the same with its groups.
@@ -41,28 +41,6 @@ _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
 _MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control"}
-
-
-class Nodes:
-    """The nodes of the box of n modules of side L0, numbered as the lattice numbers
-    them (corners x-fastest, then centres), their coordinates and which belong to a
-    kept module (mask[i, j, k]): computed, not built, so that no process needs the
-    whole lattice (under MPI each rank builds its slab, pkg/ldem/Slab.hpp)."""
-
-    def __init__(self, n, L0, mask):
-        def grid(counts, offset):  # (i, j, k) L0 of every node of a grid, x fastest
-            k, j, i = np.meshgrid(*(np.arange(c) for c in reversed(counts)), indexing="ij")
-            return np.column_stack([(a.ravel() + offset) * L0 for a in (i, j, k)])
-        nx, ny, nz = n
-        self.x = np.vstack([grid((nx + 1, ny + 1, nz + 1), 0), grid((nx, ny, nz), 0.5)])
-        padded = np.pad(mask.astype(bool), 1)
-        corner = np.zeros((nx + 1, ny + 1, nz + 1), dtype=bool)  # a corner of some kept module
-        for d in np.ndindex(2, 2, 2):
-            corner |= padded[d[0]:d[0] + nx + 1, d[1]:d[1] + ny + 1, d[2]:d[2] + nz + 1]
-        self.present = np.concatenate([corner.transpose(2, 1, 0).ravel(), mask.astype(bool).transpose(2, 1, 0).ravel()])
-        self.lo, self.hi = self.x.min(axis=0), self.x.max(axis=0)  # the box's
-        self.tol = 1e-6 * L0
-        self.L0 = L0
 
 
 def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
