@@ -130,6 +130,24 @@ VTU_CELL_ARRAYS = {"damage_state": ("Int32", 1), "damage": ("Float64", 1), "kapp
                    "kind": ("Int32", 1)}
 
 
+def write_pvtu(path: str, pieces: List[str], point_arrays: dict, cell_arrays: dict) -> None:
+    """The parallel VTK file (.pvtu) that names the pieces (written by rank 0);
+    arrays: name -> (VTK type, components)."""
+    def decl(arrays):
+        return "".join(f'      <PDataArray type="{t}" Name="{n}" NumberOfComponents="{c}"/>\n'
+                       for n, (t, c) in arrays.items())
+    text = ('<?xml version="1.0"?>\n'
+            '<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">\n'
+            '  <PUnstructuredGrid GhostLevel="0">\n'
+            f'    <PPointData>\n{decl(point_arrays)}    </PPointData>\n'
+            f'    <PCellData>\n{decl(cell_arrays)}    </PCellData>\n'
+            '    <PPoints>\n      <PDataArray type="Float64" NumberOfComponents="3"/>\n    </PPoints>\n'
+            + "".join(f'    <Piece Source="{os.path.basename(p)}"/>\n' for p in pieces)
+            + '  </PUnstructuredGrid>\n</VTKFile>\n')
+    with atomic(path) as tmp, open(tmp, "w") as f:
+        f.write(text)
+
+
 def write_bars(sim, path: str, broken_only: bool = False) -> str:
     """write_vtu; for a lattice split over MPI ranks, this rank's piece (bars_pN.vtu
     for bars.vtu) and, on rank 0, bars.pvtu naming the pieces. Returns the name
@@ -140,7 +158,7 @@ def write_bars(sim, path: str, broken_only: bool = False) -> str:
     write_vtu(sim, parallel.piece_name(path, parallel.rank()), broken_only)
     whole = os.path.splitext(path)[0] + ".pvtu"
     if parallel.is_root():
-        parallel.write_pvtu(whole, [parallel.piece_name(path, r) for r in range(parallel.ranks())],
+        write_pvtu(whole, [parallel.piece_name(path, r) for r in range(parallel.ranks())],
                             VTU_POINT_ARRAYS, VTU_CELL_ARRAYS)
     return os.path.basename(whole)
 

@@ -54,21 +54,3 @@ def piece_name(path: str, r: int) -> str:
     """bars.vtu -> bars_p3.vtu: rank r's piece of a parallel file."""
     stem, _ = os.path.splitext(path)
     return f"{stem}_p{r}.vtu"
-
-
-def write_pvtu(path: str, pieces: List[str], point_arrays: dict, cell_arrays: dict) -> None:
-    """The parallel VTK file (.pvtu) that names the pieces (written by rank 0);
-    arrays: name -> (VTK type, components)."""
-    def decl(arrays):
-        return "".join(f'      <PDataArray type="{t}" Name="{n}" NumberOfComponents="{c}"/>\n'
-                       for n, (t, c) in arrays.items())
-    text = ('<?xml version="1.0"?>\n'
-            '<VTKFile type="PUnstructuredGrid" version="0.1" byte_order="LittleEndian">\n'
-            '  <PUnstructuredGrid GhostLevel="0">\n'
-            f'    <PPointData>\n{decl(point_arrays)}    </PPointData>\n'
-            f'    <PCellData>\n{decl(cell_arrays)}    </PCellData>\n'
-            '    <PPoints>\n      <PDataArray type="Float64" NumberOfComponents="3"/>\n    </PPoints>\n'
-            + "".join(f'    <Piece Source="{os.path.basename(p)}"/>\n' for p in pieces)
-            + '  </PUnstructuredGrid>\n</VTKFile>\n')
-    with open(path, "w") as f:
-        f.write(text)
