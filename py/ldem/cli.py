@@ -58,7 +58,7 @@ def cmd_cube(args) -> int:
         from .io import read_checkpoint
 
         try:
-            _, parameters = read_checkpoint(os.path.join(args.restart, "checkpoint.npz"))
+            _, parameters, _ = read_checkpoint(os.path.join(args.restart, "checkpoint.npz"))
         except OSError as e:
             raise ValueError(f"cannot restart from {args.restart}: {e.strerror or e}") from None
         args.out = args.restart

@@ -7,6 +7,7 @@ import contextlib
 import csv
 import json
 import os
+import time
 from typing import List, Sequence
 
 import numpy as np
@@ -248,21 +249,22 @@ def read_table(path: str) -> List[dict]:
 
 
 # -- checkpoints -----------------------------------------------------------------
-def write_checkpoint(path: str, state: dict, parameters: dict) -> None:
+def write_checkpoint(path: str, state: dict, parameters: dict, wall_s: float = 0.0) -> None:
     """checkpoint.npz: the arrays of Simulation.checkpoint() (nodes: u_*, v_*,
     f_* by component; bars: kappa, eps_r; rows: softening; the run's scalars,
-    counters, events and load-loss window) and the test's parameters as JSON.
-    npz, not HDF5: numpy reads it with nothing else installed, and it holds
-    named arrays, which is all a checkpoint is."""
+    counters, events and load-loss window), the test's parameters as JSON and
+    the wall time the run had taken. npz, not HDF5: numpy reads it with
+    nothing else installed, and it holds named arrays, which is all a
+    checkpoint is."""
     with atomic(path) as tmp:
-        np.savez(tmp, parameters=np.array(json.dumps(parameters)), **state)
+        np.savez(tmp, parameters=np.array(json.dumps(parameters)), wall_s=np.array(wall_s), **state)
 
 
 def read_checkpoint(path: str) -> tuple:
-    """(state for Simulation.restore, parameters)."""
+    """(state for Simulation.restore, parameters, wall time the run had taken [s])."""
     with np.load(path) as z:
-        state = {k: z[k] for k in z.files if k != "parameters"}
-        return state, json.loads(str(z["parameters"]))
+        state = {k: z[k] for k in z.files if k not in ("parameters", "wall_s")}
+        return state, json.loads(str(z["parameters"])), float(z["wall_s"]) if "wall_s" in z.files else 0.0
 
 
 def cut_curve_after(path: str, step: int) -> List[dict]:
@@ -278,13 +280,17 @@ def cut_curve_after(path: str, step: int) -> List[dict]:
 
 
 class Checkpoints:
-    """An observer of CubeTest.run: checkpoint.npz every `every` curve rows."""
+    """An observer of CubeTest.run: checkpoint.npz every `every` curve rows
+    and/or every `seconds` of wall time (0: not on that count); wall_before:
+    the wall time of the run before this piece of it (a restart)."""
 
-    def __init__(self, sim, path: str, every: int, parameters: dict):
-        self.sim, self.path, self.every, self.parameters, self.rows = sim, path, every, parameters, 0
+    def __init__(self, sim, path: str, every: int, parameters: dict, seconds: float = 0.0, wall_before: float = 0.0):
+        self.sim, self.path, self.every, self.parameters, self.seconds = sim, path, every, parameters, seconds
+        self.rows, self.start, self.last, self.wall_before = 0, time.monotonic(), time.monotonic(), wall_before
 
     def __call__(self, row: dict) -> None:
         self.rows += 1
-        if self.rows % self.every == 0:
-            write_checkpoint(self.path, self.sim.checkpoint(), self.parameters)
-
+        now = time.monotonic()
+        if (self.every and self.rows % self.every == 0) or (self.seconds and now - self.last >= self.seconds):
+            write_checkpoint(self.path, self.sim.checkpoint(), self.parameters, self.wall_before + now - self.start)
+            self.last = now

@@ -17,39 +17,45 @@ from .progress import ProgressBar
 
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
              simulation=None, figure_format: str = "png", snapshots: Sequence[float] = (),
-             checkpoint_every: int = 0, restart: bool = False, observers: Sequence = ()) -> CubeResult:
+             checkpoint_every: int = 0, restart: bool = False, observers: Sequence = (),
+             checkpoint_seconds: float = 0.0) -> CubeResult:
     """Runs test (an ldem.CubeTest or an ldem.specimen.SpecimenTest); with out, writes curve.csv (row by row), summary.json (also
     when the run fails or is interrupted: status says so) and, with plots,
     curve, energies and cracks pictures (figure_format: png, pdf or svg) and
     the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu at each mean strain of
     `snapshots`, bars.vtu and crack.vtu at the end, bars.pvd and crack.pvd.
     progress: a bar on stderr (default: when stderr is a terminal).
-    checkpoint_every: write out/checkpoint.npz every so many curve rows.
+    checkpoint_every: write out/checkpoint.npz every so many curve rows;
+    checkpoint_seconds: every so many seconds of wall time (0: not on that count).
     observers: more callables given each curve row, after the writers.
     restart: continue the run of out/checkpoint.npz (same parameters), bit for
     bit as if it had never stopped; curve.csv keeps its rows up to the
-    checkpoint and gets the rest."""
+    checkpoint and gets the rest; summary.json's wall_s counts the run's wall
+    time up to the checkpoint too, and restarted_at_step says where it
+    continued."""
     if any(not (s > 0) for s in snapshots):
         raise ValueError(f"snapshot strains must be positive (got {list(snapshots)})")
-    if checkpoint_every < 0:
-        raise ValueError(f"checkpoint interval must be >= 0 rows (got {checkpoint_every})")
-    if (restart or checkpoint_every) and out is None:
+    if checkpoint_every < 0 or not (checkpoint_seconds >= 0):
+        raise ValueError(f"checkpoint intervals must be >= 0 rows and >= 0 s (got {checkpoint_every} rows, "
+                         f"{checkpoint_seconds} s)")
+    checkpoints = bool(checkpoint_every or checkpoint_seconds)
+    if (restart or checkpoints) and out is None:
         raise ValueError("checkpoints need an output folder")
-    if (restart or checkpoint_every) and parallel.ranks() > 1:
+    if (restart or checkpoints) and parallel.ranks() > 1:
         raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
     if out is not None:
         io.prepare_dir(out)
     sim = simulation if simulation is not None else test.simulation()
-    previous = []
+    previous, wall_before = [], 0.0
     if restart:
-        previous = _restore(test, sim, out)
+        previous, wall_before = _restore(test, sim, out)
     root = parallel.is_root()  # under MPI, rank 0 writes the files every rank has (the curve, the summary)
     bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance)
     csv = io.CurveCsv(os.path.join(out, "curve.csv"), append=restart) if out is not None and root else None
     series = io.Snapshots(sim, out, [s for s in snapshots if not previous or s > previous[-1]["mean_strain"]]) \
         if out is not None and plots else None
-    saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters()) \
-        if checkpoint_every else None
+    saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters(),
+                           checkpoint_seconds, wall_before) if checkpoints else None
     everyone = [o for o in (csv, bar, series, saver) if o is not None] + list(observers)
     try:
         result = test.run(everyone, simulation=sim, previous_rows=previous)
@@ -62,6 +68,9 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         bar.close()
         if csv is not None:
             csv.close()
+    if restart:
+        result.wall_s += wall_before
+        result.summary.update(wall_s=result.wall_s, restarted_at_step=int(previous[-1]["step"]) if previous else 0)
     if out is not None:
         try:
             if plots:
@@ -78,18 +87,19 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     return result
 
 
-def _restore(test: CubeTest, sim, out: str) -> list:
-    """sim set back to out/checkpoint.npz, curve.csv cut to its rows; returns them."""
+def _restore(test: CubeTest, sim, out: str) -> tuple:
+    """sim set back to out/checkpoint.npz, curve.csv cut to its rows; returns
+    them and the wall time the run had taken up to the checkpoint."""
     path = os.path.join(out, "checkpoint.npz")
     try:
-        state, parameters = io.read_checkpoint(path)
+        state, parameters, wall_s = io.read_checkpoint(path)
     except OSError as e:
         raise ValueError(f"cannot restart: {path}: {e.strerror or e}") from None
     mine = {k: v for k, v in test.parameters().items() if k != "threads"}
     if {k: v for k, v in parameters.items() if k != "threads"} != mine:
         raise ValueError(f"cannot restart: {path} is of other parameters")
     sim.restore(state)
-    return io.cut_curve_after(os.path.join(out, "curve.csv"), int(state["counters"][0]))
+    return io.cut_curve_after(os.path.join(out, "curve.csv"), int(state["counters"][0])), wall_s
 
 
 def _summary_after_failure(summary: dict, out: str) -> None:

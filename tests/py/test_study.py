@@ -126,6 +126,46 @@ def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
     assert again[2]["fracture_energy_J"] == first[2]["fracture_energy_J"]
 
 
+def test_an_interrupted_case_continues_from_its_checkpoint(tmp_path, monkeypatch):
+    """A case writes checkpoint.npz as it runs; a study killed in the middle of
+    it continues from there, and ends bit for bit as the case that never
+    stopped: the same curve.csv and summary figures. Its wall time counts both
+    pieces; the checkpoint is removed once the case is finished."""
+    import ldem
+    from ldem.cli import RERUN_KEYS
+    from ldem.study import cases
+
+    monkeypatch.setattr(cases, "CHECKPOINT_SECONDS", 1e-9)  # a checkpoint at every curve row
+    test = CubeTest(size=0.06, **TINY)
+    whole = study.run_cases([test], str(tmp_path / "whole"), log=lambda s: None)[0]
+    cut = study.case_dir(str(tmp_path / "cut"), test)
+    with open(os.path.join(study.case_dir(str(tmp_path / "whole"), test), "curve.csv"), "rb") as f:
+        curve = f.read()
+    rows = []
+
+    def killed(row):  # three quarters through: most of the wall time is before the checkpoint
+        rows.append(row["step"])
+        if len(rows) == 3 * (curve.count(b"\n") - 1) // 4:
+            raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        ldem.run_cube(test, out=cut, progress=False, plots=False, checkpoint_seconds=1e-9, observers=[killed])
+    _, _, wall_before = ldem.io.read_checkpoint(os.path.join(cut, "checkpoint.npz"))
+    assert wall_before > 0
+    log = []
+    again = study.run_cases([test], str(tmp_path / "cut"), log=log.append)[0]
+    name = study.case_name(test)
+    assert log[0] == f"  {name}: status 'interrupted': continuing from its checkpoint at step {rows[-1]}"
+    assert again["restarted_at_step"] == rows[-1] and 0 < rows[-1] < whole["steps"]
+    for k in RERUN_KEYS:
+        assert again[k] == whole[k], k
+    with open(os.path.join(cut, "curve.csv"), "rb") as f:
+        assert f.read() == curve
+    assert again["wall_s"] > wall_before
+    assert not os.path.exists(os.path.join(cut, "checkpoint.npz"))
+    assert study.run_cases([test], str(tmp_path / "cut"), log=log.append)[0] == again  # finished: not run again
+
+
 def test_size_effect_command_tables_and_report(tmp_path, cli):
     out = str(tmp_path / "se")
     r = cli("study", "size-effect", "--out", out, "--sizes", "0.04,0.12", "--seeds", "2", "--jobs", "2",

@@ -4,10 +4,12 @@ running one case into its folder, and reading its files back.
 Layout of a study folder DIR: one folder per case, DIR/cases/<name>/
 (curve.csv, summary.json, cracks.png, slice.npz). A case is finished when its
 summary.json says "done" for the same parameters and slice.npz (written last)
-exists; any other case folder (interrupted, failed, other parameters) is
-computed again from scratch."""
+exists. An unfinished case with a checkpoint.npz of its parameters (a case
+writes one every CHECKPOINT_SECONDS) continues from it; any other case folder
+(failed, other parameters) is computed again from scratch."""
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import os
 import shutil
@@ -98,16 +100,40 @@ def is_finished(case_dir: str, test: CubeTest) -> bool:
     return unfinished_reason(case_dir, test) is None
 
 
+# A case writes checkpoint.npz this often (wall time): a study stopped by a
+# kill, a reboot or the end of a batch job loses at most this much of a case.
+CHECKPOINT_SECONDS = 600.0
+
+
+def checkpoint_step(case_dir: str, test: CubeTest) -> Optional[int]:
+    """The step of the unfinished case's checkpoint.npz, if it has a readable one
+    of test's parameters (threads aside) and a curve.csv; else None."""
+    try:
+        state, parameters, _ = io.read_checkpoint(os.path.join(case_dir, "checkpoint.npz"))
+    except (OSError, ValueError, KeyError, EOFError):
+        return None
+    if _comparable(parameters) != _comparable(test.parameters()) or \
+            not os.path.exists(os.path.join(case_dir, "curve.csv")):
+        return None
+    return int(state["counters"][0])
+
+
 def run_case(params: dict, case_dir: str) -> dict:
-    """Runs one case into case_dir (emptied first) and returns its summary.
-    A top-level function, so that worker processes and dask can call it."""
+    """Runs one case into case_dir and returns its summary: from the case's
+    checkpoint if it has one (bit for bit the run it would have been), else
+    from scratch in the emptied folder. A top-level function, so that worker
+    processes and dask can call it."""
     from .. import plots  # matplotlib only where pictures are drawn: `ldem cube` starts faster
     from ..runner import run_cube
 
-    if os.path.isdir(case_dir):
-        shutil.rmtree(case_dir)  # half-finished or stale: start afresh
     test = CubeTest(**params)
-    result = run_cube(test, out=case_dir, progress=False, plots=False)
+    restart = checkpoint_step(case_dir, test) is not None
+    if os.path.isdir(case_dir) and not restart:
+        shutil.rmtree(case_dir)  # half-finished or stale: start afresh
+    result = run_cube(test, out=case_dir, progress=False, plots=False, restart=restart,
+                      checkpoint_seconds=CHECKPOINT_SECONDS)
+    with contextlib.suppress(FileNotFoundError):
+        os.remove(os.path.join(case_dir, "checkpoint.npz"))  # the case is done: the state is not needed
     seg, state = plots.central_slice(result.sim)
     # Written last: its presence marks the case finished (with summary.json "done").
     io.write_slice(os.path.join(case_dir, "slice.npz"), seg, state)

@@ -10,7 +10,7 @@ from typing import Callable, List, Optional, Sequence
 from .. import io
 from ..cube import CubeTest
 from ..progress import CaseProgress
-from .cases import case_dir, case_name, load_summary, run_case, unfinished_reason
+from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
 
 
 def default_threads(jobs: int) -> int:
@@ -82,7 +82,10 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
     if len(todo) < len(tests):
         log(f"{len(tests) - len(todo)} of {len(tests)} cases already finished in {out}/cases")
     for i in todo:
-        if reasons[i] != "not run yet":
+        step = checkpoint_step(dirs[i], tests[i])
+        if step is not None:
+            log(f"  {case_name(tests[i])}: {reasons[i]}: continuing from its checkpoint at step {step}")
+        elif reasons[i] != "not run yet":
             log(f"  {case_name(tests[i])}: {reasons[i]}: running it again")
     bar = CaseProgress(len(tests), len(tests) - len(todo), progress)
     args = [(tests[i].parameters(), dirs[i]) for i in todo]
