@@ -286,7 +286,8 @@ class Checkpoints:
 
     def __init__(self, sim, path: str, every: int, parameters: dict, seconds: float = 0.0, wall_before: float = 0.0):
         self.sim, self.path, self.every, self.parameters, self.seconds = sim, path, every, parameters, seconds
-        self.rows, self.start, self.last, self.wall_before = 0, time.monotonic(), time.monotonic(), wall_before
+        self.rows, self.wall_before = 0, wall_before
+        self.start = self.last = time.monotonic()
 
     def __call__(self, row: dict) -> None:
         self.rows += 1
