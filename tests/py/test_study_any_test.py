@@ -24,7 +24,7 @@ def tiny_beam(seed: int, notch: float = 0.5) -> ldem.SpecimenTest:
 def test_a_study_of_specimens_runs_resumes_and_never_recomputes(tmp_path):
     out = str(tmp_path / "st")
     tests = [tiny_beam(1), tiny_beam(2)]
-    first = study.run_cases(tests, out, log=lambda s: None)
+    first = study.run_cases(tests, out, jobs=2, log=lambda s: None)  # in two worker processes
     assert [s["status"] for s in first] == ["done", "done"]
     assert first[0]["peak_stress_MPa"] != first[1]["peak_stress_MPa"]  # two random fields
     names = [study.case_name(t) for t in tests]
