@@ -15,7 +15,7 @@ import numpy as np
 
 from .. import io
 from ..cube import CubeTest
-from .cases import case_name
+from .cases import Named, case_name
 from .executors import run_cases
 
 VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
@@ -24,25 +24,16 @@ VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strai
 RUNS = [(ld, v) for ld in ("uniform", "triangular") for v in VARIANTS]
 
 
-class AblationCube:
+class AblationCube(Named):
     """The CubeTest of one variant as a study case: its summary also says
     where its damage is (the "ablation" entry); its folder is the cube's."""
 
     def __init__(self, variant: str, **cube):
         self.variant, self.cube = variant, CubeTest(**cube)
-        self.final_strain, self.energy_tolerance = self.cube.final_strain, self.cube.energy_tolerance
-
-    def case_name(self) -> str:
-        return case_name(self.cube)
+        super().__init__(self.cube, case_name(self.cube))
 
     def describe(self) -> str:
         return f"{self.cube.describe()}, {self.variant}"
-
-    def parameters(self) -> dict:
-        return self.cube.parameters()
-
-    def simulation(self):
-        return self.cube.simulation()
 
     def run(self, observers=(), simulation=None, previous_rows=()):
         result = self.cube.run(observers, simulation, previous_rows)

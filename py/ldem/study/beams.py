@@ -18,6 +18,7 @@ from typing import Callable, List, Sequence
 
 from .. import io
 from ..specimen import SpecimenTest
+from .cases import Named
 from .executors import run_cases
 
 E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
@@ -88,32 +89,19 @@ def beam_case(out: str, D: float, notch: float, seed: int, gf_cv: float = 1.0) -
     return os.path.join(out, "cases" if gf_cv == 1.0 else f"cases_cv{gf_cv:g}", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
 
 
-class Beam:
+class Beam(Named):
     """One beam of the series as a study case: the SpecimenTest of beam(), run
     until PastThePeak; its folder D{mm}_n{notch}_s{seed} in cases/ (random G_f)
     or cases_cv{CV}/; seed 1 also writes the pictures and ParaView files."""
 
     def __init__(self, D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0):
         self.D, self.notch, self.eps_p, self.seed, self.gf_cv = D, notch, eps_p, seed, gf_cv
-        self.specimen = beam(D, notch, eps_p, seed, gf_cv)
-        self.final_strain, self.energy_tolerance = self.specimen.final_strain, self.specimen.energy_tolerance
-        self.cases_folder = os.path.dirname(beam_case("", D, notch, seed, gf_cv))
-        self.writers = ["curve", "summary"] + (["figures", "vtk"] if seed == 1 else [])
-
-    def case_name(self) -> str:
-        return os.path.basename(beam_case("", self.D, self.notch, self.seed, self.gf_cv))
-
-    def describe(self) -> str:
-        return self.specimen.describe()
-
-    def parameters(self) -> dict:
-        return self.specimen.parameters()
-
-    def simulation(self):
-        return self.specimen.simulation()
+        folder, name = os.path.split(beam_case("", D, notch, seed, gf_cv))
+        super().__init__(beam(D, notch, eps_p, seed, gf_cv), name,
+                         ["curve", "summary"] + (["figures", "vtk"] if seed == 1 else []), folder)
 
     def run(self, observers=(), simulation=None, previous_rows=()):
-        return self.specimen.run(list(observers) + [PastThePeak(previous_rows)], simulation, previous_rows)
+        return self.test.run(list(observers) + [PastThePeak(previous_rows)], simulation, previous_rows)
 
 
 def calibrate(log: Callable[[str], None] = print) -> float:
