@@ -61,7 +61,10 @@ class Slice:
     def finish(self, result) -> None:
         from .. import plots
 
-        seg, state = central_slice(result.sim)
+        piece = central_slice(result.sim)
+        if piece is None:  # under MPI, a rank other than 0: its bars went to rank 0
+            return
+        seg, state = piece
         write_slice(os.path.join(self.out, SLICE), seg, state)
         plots.crack_figure_from_slice(seg, state, os.path.join(self.out, "cracks.png"),
                                       title=self.title or result.test.describe())
