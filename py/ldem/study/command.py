@@ -9,6 +9,9 @@ from typing import List, Sequence
 
 from ..helptext import HelpFormatter, add_output_flags
 from ..cube import CubeTest, settings
+from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
+from .beam_tables import write_curve_tables, write_size_effect
+from .beams import run_beams, series_tests, uniform_tests, write_predictions
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
@@ -169,18 +172,16 @@ def cmd_refinement(args) -> int:
 def cmd_beams(args) -> int:
     """The Gregoire et al. (2013) beams (ldem.study.beams): the unfinished cases,
     then predictions.csv, the curve tables and the size effect."""
-    from . import beam_report, beam_tables, beams
-
     if not (args.eps_p > 0):
         raise ValueError(f"--eps-p must be positive (got {args.eps_p}; scripts/gregoire2013.py calibrate finds it)")
-    tests = beams.uniform_tests(args.eps_p) if args.uniform else beams.series_tests(args.eps_p, _seeds(args))
-    beams.run_beams(tests, args.out, args.jobs)
-    beams.write_predictions(args.out, args.seeds)
-    beam_report.curves_figure(args.out, beam_tables.write_curve_tables(args.out, args.seeds))
-    found = beam_tables.write_size_effect(args.out)
+    tests = uniform_tests(args.eps_p) if args.uniform else series_tests(args.eps_p, _seeds(args))
+    run_beams(tests, args.out, args.jobs)
+    write_predictions(args.out, args.seeds)
+    curves_figure(args.out, write_curve_tables(args.out, args.seeds))
+    found = write_size_effect(args.out)
     if found is not None:
-        beam_report.size_effect_figure(args.out, *found[1:])
-        beam_report.cracks_mosaic(args.out)
+        size_effect_figure(args.out, *found[1:])
+        cracks_mosaic(args.out)
     return 0
 
 
