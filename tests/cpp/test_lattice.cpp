@@ -395,7 +395,8 @@ TEST(DirectLattice, LumpedMassOfEveryNodeKind) {
                                          {8, (nx - 1) * (ny - 1) * (nz - 1)}}));
     for (int k = 0; k < nz; ++k)
         for (int j = 0; j < ny; ++j)
-            for (int i = 0; i < nx; ++i) EXPECT_NEAR(lat.mass[lat.centreId(i, j, k)], mm / 2, 1e-14 * mm) << i << j << k;
+            for (int i = 0; i < nx; ++i)
+                EXPECT_NEAR(lat.mass[lat.centreId(i, j, k)], mm / 2, 1e-14 * mm) << i << j << k;
     double total = 0;
     for (double x : lat.mass) total += x;
     EXPECT_NEAR(total, nx * ny * nz * mm, 1e-13 * nx * ny * nz * mm);

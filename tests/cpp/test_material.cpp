@@ -1,7 +1,8 @@
 // Nayfeh-Hefzy equivalence (LDEM_SPEC section 2): the closed-form constants,
-// the areas the built lattice gives each bar family, and the elastic tensor of the infinite lattice computed from the built
-// lattice's own bar families (affine deformation), which must be the isotropic
-// tensor of (E, nu) for nu = 0.25.
+// the areas the built lattice gives each bar family, and the elastic tensor of
+// the infinite lattice computed from the built lattice's own bar families
+// (affine deformation), which must be the isotropic tensor of (E, nu) for
+// nu = 0.25.
 #include <gtest/gtest.h>
 
 #include <array>
