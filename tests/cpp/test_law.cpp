@@ -98,7 +98,8 @@ TEST(HillerborgLaw, DissipatedPlusStoredEqualsEnvelopeWork) {
 // Direct check (run first by tests/mutation/run.py): a damaged bar unloads on
 // the secant to the origin, F = EA eps eps_p (eps_r - kappa) / (kappa (eps_r - eps_p))
 // (the envelope's force at kappa, scaled by eps/kappa), never with its initial
-// stiffness EA. Exact to round-off (1e-12 relative).
+// stiffness EA: the law to round-off (1e-12 relative), and the force loop on
+// one module to 1e-9 (the strains of a uniform expansion, to round-off).
 TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
     const Bar b;
     const double epsR = b.epsR();
@@ -126,6 +127,28 @@ TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
     }
     // Below eps_p there is no damage: unloading is elastic with full stiffness.
     EXPECT_DOUBLE_EQ(hillerborgForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
+
+    // The same through the force loop: one module expanded uniformly by
+    // eps = 1.5 eps_p, every bar damaged to kappa = 3 eps_p with eps_r = 10 eps_p,
+    // so every bar carries EA eps s, s = eps_p (eps_r - kappa) / (kappa (eps_r - eps_p)) = 7/27.
+    // Corner (0, 0, 0) feels along x its edge (EA_n / 4: one module of four)
+    // and its diagonal (EA_d, direction (1, 1, 1)/sqrt 3): f_x = (EA_n / 4 + EA_d / sqrt 3) eps s.
+    const Material m;
+    const double L0 = 0.02, eps = 1.5 * m.epsP, s = 7.0 / 27;
+    const Lattice lat = buildCubicLattice(1, 1, 1, L0, m);
+    BarState bars(lat, m.epsP, std::vector<double>(lat.numBars(), 10 * m.epsP));
+    std::fill(bars.kappa.begin(), bars.kappa.end(), 3 * m.epsP);
+    bars.softening.assign(bars.softening.size(), 1);
+    const auto x0 = nodePositions(lat);
+    Field3 u(lat.numNodes()), f(lat.numNodes());
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+        u.x[i] = eps * x0[0][i], u.y[i] = eps * x0[1][i], u.z[i] = eps * x0[2][i];
+    BarForceBuffers g;
+    computeInternalForces(lat, u, bars, g, f);
+    const double An = 0.4 * L0 * L0, Ad = 2 * 1.125 / std::sqrt(3.0) * An;
+    const double want = m.E * (An / 4 + Ad / std::sqrt(3.0)) * eps * s;
+    EXPECT_NEAR(f.x[lat.cornerId(0, 0, 0)], want, 1e-9 * want);
+    for (double k : bars.kappa) EXPECT_EQ(k, 3 * m.epsP);  // unloading: no new damage
 }
 
 // Direct check (run first by tests/mutation/run.py): each bar's limit strain
