@@ -8,13 +8,14 @@
 #include <numeric>
 #include <vector>
 
-#include "ldem/HillerborgLaw.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/laws/Hillerborg.hpp"
 
 using namespace ldem;
+using namespace ldem::hillerborg;
 
 namespace {
 
@@ -30,7 +31,7 @@ struct Bar {
 
 // Force along the loading envelope (monotonic pull): kappa = eps.
 double envelope(const Bar& b, double eps) {
-    return hillerborgForce(eps, updateDamage(0.0, eps), b.EA, b.epsP, b.epsR());
+    return axialForce(eps, updateDamage(0.0, eps), b.EA, b.epsP, b.epsR());
 }
 
 // Work of the envelope force from 0 to e, L * integral F d(eps), by a fine
@@ -97,13 +98,13 @@ TEST(HillerborgLaw, UnloadingFollowsSecantToOrigin) {
     const Bar b;
     const double epsR = b.epsR();
     for (double kappa : {2 * b.epsP, 0.5 * (b.epsP + epsR), 0.9 * epsR}) {
-        const double Fk = hillerborgForce(kappa, kappa, b.EA, b.epsP, epsR);
+        const double Fk = axialForce(kappa, kappa, b.EA, b.epsP, epsR);
         ASSERT_GT(Fk, 0.0);
         ASSERT_LT(Fk, b.EA * b.epsP);
         // Force at kappa/2 on the unloading branch = half the envelope force at kappa.
-        EXPECT_NEAR(hillerborgForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
+        EXPECT_NEAR(axialForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
         // Linear through the origin everywhere below kappa.
-        EXPECT_NEAR(hillerborgForce(0.2 * kappa, kappa, b.EA, b.epsP, epsR), 0.2 * Fk, 1e-12 * Fk);
+        EXPECT_NEAR(axialForce(0.2 * kappa, kappa, b.EA, b.epsP, epsR), 0.2 * Fk, 1e-12 * Fk);
         // Reloading to kappa gets back the envelope; damage does not grow below kappa.
         EXPECT_EQ(updateDamage(kappa, 0.5 * kappa), kappa);
         EXPECT_EQ(updateDamage(kappa, -kappa), kappa);
@@ -115,7 +116,7 @@ TEST(HillerborgLaw, UnloadingFollowsSecantToOrigin) {
         EXPECT_NEAR(secantRatio(kappa, b.epsP, epsR), Fk / (b.EA * kappa), 1e-12);
     }
     // Below eps_p there is no damage: unloading is elastic with full stiffness.
-    EXPECT_DOUBLE_EQ(hillerborgForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
+    EXPECT_DOUBLE_EQ(axialForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
 }
 
 TEST(HillerborgLaw, CompressionIsElasticEvenAfterRupture) {
@@ -123,12 +124,12 @@ TEST(HillerborgLaw, CompressionIsElasticEvenAfterRupture) {
     const double epsR = b.epsR();
     for (double kappa : {0.0, 0.5 * b.epsP, 3 * b.epsP, epsR, 5 * epsR}) {
         for (double eps : {-1e-5, -1e-3}) {
-            EXPECT_DOUBLE_EQ(hillerborgForce(eps, kappa, b.EA, b.epsP, epsR), b.EA * eps);
+            EXPECT_DOUBLE_EQ(axialForce(eps, kappa, b.EA, b.epsP, epsR), b.EA * eps);
             EXPECT_DOUBLE_EQ(storedEnergy(eps, kappa, b.EA, b.epsP, epsR, b.L), 0.5 * b.EA * eps * eps * b.L);
         }
     }
     // A broken bar carries no tension at any strain.
-    EXPECT_EQ(hillerborgForce(0.5 * epsR, 2 * epsR, b.EA, b.epsP, epsR), 0.0);
+    EXPECT_EQ(axialForce(0.5 * epsR, 2 * epsR, b.EA, b.epsP, epsR), 0.0);
 }
 
 TEST(HillerborgLaw, SnapBackIsClampedToPerfectlyBrittle) {
@@ -141,10 +142,10 @@ TEST(HillerborgLaw, SnapBackIsClampedToPerfectlyBrittle) {
     EXPECT_EQ(ls.epsR, b.epsP);
     // The clamped bar is elastic up to eps_p (inclusive), then carries nothing.
     const double past = b.epsP * (1 + 1e-12);
-    EXPECT_DOUBLE_EQ(hillerborgForce(b.epsP, b.epsP, b.EA, b.epsP, ls.epsR), b.EA * b.epsP);
-    EXPECT_EQ(hillerborgForce(past, past, b.EA, b.epsP, ls.epsR), 0.0);
-    EXPECT_EQ(hillerborgForce(0.5 * b.epsP, past, b.EA, b.epsP, ls.epsR), 0.0);
-    EXPECT_DOUBLE_EQ(hillerborgForce(0.99 * b.epsP, 0.99 * b.epsP, b.EA, b.epsP, ls.epsR), 0.99 * b.EA * b.epsP);
+    EXPECT_DOUBLE_EQ(axialForce(b.epsP, b.epsP, b.EA, b.epsP, ls.epsR), b.EA * b.epsP);
+    EXPECT_EQ(axialForce(past, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_EQ(axialForce(0.5 * b.epsP, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_DOUBLE_EQ(axialForce(0.99 * b.epsP, 0.99 * b.epsP, b.EA, b.epsP, ls.epsR), 0.99 * b.EA * b.epsP);
     // It dissipates its whole elastic energy 1/2 L EA eps_p^2 (> A_f G_f) once past eps_p.
     EXPECT_EQ(dissipatedEnergy(b.epsP, b.EA, b.epsP, ls.epsR, b.L), 0.0);
     EXPECT_DOUBLE_EQ(dissipatedEnergy(past, b.EA, b.epsP, ls.epsR, b.L), 0.5 * b.L * b.EA * b.epsP * b.epsP);
@@ -191,7 +192,7 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
         maxEpsR = std::max(maxEpsR, ls.epsR);
         minEpsR = std::min(minEpsR, ls.epsR);
     }
-    BarState bars(lat, m.epsP, std::move(epsR));
+    HillerborgLaw bars(lat, m.epsP, std::move(epsR));
     Field3 u(lat.numNodes()), f(lat.numNodes());
     BarForceBuffers g;
     // Generalised force conjugate to s: dW = -f . x0 ds (the force the loader applies is -f).
@@ -268,7 +269,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
     const auto x0 = nodePositions(lat);
     std::vector<double> epsR(nb);
     for (std::int64_t b = 0; b < nb; ++b) epsR[b] = m.epsP * (1 + 4 * hashedUniform(5, b, 0));
-    BarState bars(lat, m.epsP, epsR);
+    HillerborgLaw bars(lat, m.epsP, epsR);
     for (std::int64_t b = 0; b < nb; ++b)
         if (hashedUniform(5, b, 1) < 1.0 / 3) bars.kappa[b] = m.epsP + (epsR[b] - m.epsP) * hashedUniform(5, b, 2);
     const std::vector<double> kappa0 = bars.kappa;
@@ -295,7 +296,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
         const double eps = double((l - t.L[b]) / t.L[b]);
         const double k = updateDamage(kappa0[b], eps);
         kappa1[b] = k > m.epsP ? k : kappa0[b];
-        const long double F = hillerborgForce(eps, k, t.EA[b], m.epsP, epsR[b]);
+        const long double F = axialForce(eps, k, t.EA[b], m.epsP, epsR[b]);
         regimes[eps <= 0 ? 4 : k <= m.epsP ? 0 : k >= epsR[b] ? 3 : eps >= kappa0[b] ? 1 : 2]++;
         for (int i = 0; i < 3; ++i) {
             std::vector<long double>& r = i == 0 ? rx : i == 1 ? ry : rz;
