@@ -1,9 +1,10 @@
 // Internal forces of the lattice, in two steps that share no writes:
 //   1. bars: every bar computes the force g it exerts on its A node (its B
 //      node gets -g) and updates its damage; rows of bars that are all
-//      elastic take a fast path without the law's state and division (see
-//      laws/BarLaw.hpp; with laws/Hillerborg.hpp on the 48^3 cube, one thread, the bar pass went from
-//      2.36 to 1.71 ns per bar, medians of 5 interleaved runs);
+//      elastic take a fast path without the law's state and division (the
+//      row functor of laws/BarLaw.hpp; with laws/Hillerborg.hpp on the 48^3
+//      cube, one thread, the bar pass went from 2.36 to 1.71 ns per bar,
+//      medians of 5 interleaved runs);
 //   2. nodes: every node sums the +-g of its bars in a fixed order.
 // Both stream along rows of the regular lattice (see Lattice.hpp), so the
 // inner loops are plain vectorizable loops over contiguous arrays. They are
