@@ -9,7 +9,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "ldem/InternalForces.hpp"
+#include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
 
 namespace ldem {

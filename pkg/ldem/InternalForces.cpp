@@ -21,6 +21,30 @@ void forEachBarStrainInRow(const Lattice& lat, const Field3& u, std::int64_t r, 
     }
 }
 
+// Instantiated here for each law of the registry, with forEachBarStrainInRow
+// local to this file: the compiler then inlines the whole bar loop, and its
+// sums keep the fused multiply-adds they had (as a template in the header
+// instead, elastic_J changed in its last bits: tests/golden).
+template <class Law>
+BarEnergies lawEnergies(const Lattice& lat, const Field3& u, const Law& law) {
+    auto addBar = [&](std::int64_t b, const BarFamily& fam, double EA, double eps, std::array<double, 4>& acc) {
+        acc[0] += law.stored(b, EA, fam.L, eps);
+        acc[1] += law.dissipated(b, EA, fam.L, eps);
+        const DamageState s = law.damage(b, eps);
+        acc[2] += s == DamageState::Damaged;
+        acc[3] += s == DamageState::Broken;
+    };
+    // Owned layers only, each summed in bar order, added in layer order: the
+    // same sums for any number of ranks and threads (Slab.hpp).
+    const auto sums = layerSum<4>(lat, [&](int m, std::array<double, 4>& acc) {
+        for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r)
+            forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily& fam, double EA, double eps) {
+                addBar(b, fam, EA, eps, acc);
+            });
+    });
+    return {sums[0], sums[1], std::int64_t(sums[2]), std::int64_t(sums[3])};
+}
+
 }  // namespace
 
 void BarForceBuffers::prepare(const Lattice& lat, int threads) {
@@ -58,10 +82,6 @@ void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f) {
     }
 }
 
-void computeInternalForces(const Lattice& lat, const Field3& u, BarState& bars, BarForceBuffers& g, Field3& f) {
-    layeredForces(lat, u, g, f, HillerborgBars(bars), [](int) {});
-}
-
 namespace {
 // The undamaged, small-displacement stiffness as a bar law (never inelastic):
 // force on node A of a bar of stiffness EA/L, negated for K x: -(EA/L)(n.du)n.
@@ -87,27 +107,8 @@ void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers
     layeredForces(lat, x, g, y, LinearBars{}, [](int) {});
 }
 
-BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bars) {
-    auto addBar = [&](std::int64_t b, const BarFamily& fam, double EA, double eps, std::array<double, 4>& acc) {
-        const double epsR = bars.epsR[b];
-        // kappa is the damage reached at the last force evaluation; the bar
-        // can only have gone further since, so take the larger.
-        const double kappa = updateDamage(bars.kappa[b], eps);
-        acc[0] += storedEnergy(eps, kappa, EA, bars.epsP, epsR, fam.L);
-        acc[1] += dissipatedEnergy(kappa, EA, bars.epsP, epsR, fam.L);
-        const DamageState s = damageState(kappa, bars.epsP, epsR);
-        acc[2] += s == DamageState::Damaged;
-        acc[3] += s == DamageState::Broken;
-    };
-    // Owned layers only, each summed in bar order, added in layer order: the
-    // same sums for any number of ranks and threads (Slab.hpp).
-    const auto sums = layerSum<4>(lat, [&](int m, std::array<double, 4>& acc) {
-        for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r)
-            forEachBarStrainInRow(lat, u, r, [&](std::int64_t b, const BarFamily& fam, double EA, double eps) {
-                addBar(b, fam, EA, eps, acc);
-            });
-    });
-    return {sums[0], sums[1], std::int64_t(sums[2]), std::int64_t(sums[3])};
+BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarLaws& law) {
+    return std::visit([&](const auto& l) { return lawEnergies(lat, u, l); }, law);
 }
 
 std::vector<double> barStrains(const Lattice& lat, const Field3& u) {

@@ -1,9 +1,10 @@
 // Internal forces of the lattice, in two steps that share no writes:
 //   1. bars: every bar computes the force g it exerts on its A node (its B
 //      node gets -g) and updates its damage; rows of bars that are all
-//      elastic take a fast path without the law's state and division (see
-//      HillerborgBars: on the 48^3 cube, one thread, the bar pass went from
-//      2.36 to 1.71 ns per bar, medians of 5 interleaved runs);
+//      elastic take a fast path without the law's state and division (the
+//      row functor of laws/BarLaw.hpp; with laws/Hillerborg.hpp on the 48^3
+//      cube, one thread, the bar pass went from 2.36 to 1.71 ns per bar,
+//      medians of 5 interleaved runs);
 //   2. nodes: every node sums the +-g of its bars in a fixed order.
 // Both stream along rows of the regular lattice (see Lattice.hpp), so the
 // inner loops are plain vectorizable loops over contiguous arrays. They are
@@ -20,55 +21,13 @@
 #include <utility>
 #include <vector>
 
-#include "ldem/HillerborgLaw.hpp"
+#include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
+#include "ldem/laws/BarLaw.hpp"
+#include "ldem/laws/Registry.hpp"
 
 namespace ldem {
-
-// Three components in structure-of-arrays form (per node or per bar).
-struct Field3 {
-    std::vector<double> x, y, z;
-    explicit Field3(std::int64_t n = 0) : x(n, 0.0), y(n, 0.0), z(n, 0.0) {}
-};
-
-// Per-bar state of the softening law. Kept in double precision: the damaged
-// regime is chaotic, and rounding kappa or eps_r to float moved the peak of the
-// 0.24 m cube by 3e-4 (measured), far above rounding.
-struct BarState {
-    double epsP = 0;            // critical strain (same for all bars)
-    std::vector<double> epsR;   // limit strain of each bar
-    // Damage: the largest strain reached, recorded once it passes eps_p (the
-    // law does not depend on it below eps_p, so elastic bars never write it).
-    std::vector<double> kappa;
-    // Per bar row: 1 once some bar of the row has passed eps_p.
-    std::vector<std::uint8_t> softening;
-
-    BarState() = default;
-    // Undamaged bars of lat with the given limit strains.
-    BarState(const Lattice& lat, double epsP_, std::vector<double> epsR_)
-        : epsP(epsP_), epsR(std::move(epsR_)), kappa(lat.numBars(), 0.0), softening(lat.barRows.size(), 0) {}
-};
-
-// The stretch of a bar from its reference vector d0 (length L) and the
-// relative displacement du of its ends, without cancellation:
-//   n = l^2 - L^2 = 2 d0.du + du.du   =>   eps = (l - L)/L = n / ((l + L) L).
-// One division serves the strain and the force per unit length F/l, which
-// turns the force into its components (F d/l):
-//   w = 1 / ((l + L) L l),   eps = n w l,   F/l = EA eps r / l = EA n w r,
-// with r = F/(EA eps) the law's force ratio (1 while the bar is elastic).
-struct BarStretch {
-    double dx, dy, dz;  // current bar vector d0 + du [m]
-    double l, n, w;
-    double strain() const { return n * w * l; }
-};
-
-inline BarStretch barStretch(const BarFamily& fam, double dux, double duy, double duz) {
-    const double dx = fam.d0[0] + dux, dy = fam.d0[1] + duy, dz = fam.d0[2] + duz;
-    const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
-    return {dx, dy, dz, l, n, 1 / ((l + fam.L) * fam.L * l)};
-}
 
 // Layers [first, second) of thread t out of T.
 inline std::pair<int, int> layerRange(int layers, int t, int T) {
@@ -94,54 +53,7 @@ private:
     std::vector<double*> base_;  // per layer
 };
 
-// A bar law is a functor with a fast path for elastic bars, nearly all of
-// them: there it needs neither the law's division nor its state. For bar row
-// r, whose bars are first, first + 1, ..., law.forRow(r, first) gives the law
-// of that row (state pointers advanced, so that the loops index them from 0):
-//   rowLaw.softening()     true once some bar of the row has left the elastic range;
-//   rowLaw.elastic(p, fam, EA, dux, duy, duz, gx, gy, gz)   writes in g the force
-//       on bar p's A node as if the bar were elastic, and returns a number > 0
-//       if it may not be (the row then goes through the full law and is marked softening);
-//   rowLaw(p, fam, EA, dux, duy, duz, gx, gy, gz)   the full law: the same, with damage.
-// du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
-
-// The Hillerborg law (HillerborgLaw.hpp): elastic while max(kappa, eps) <= eps_p.
-struct HillerborgBars {
-    double* kappa;
-    const double* epsR;
-    double epsP;
-    std::uint8_t* softeningRow;
-
-    explicit HillerborgBars(BarState& s)
-        : kappa(s.kappa.data()), epsR(s.epsR.data()), epsP(s.epsP), softeningRow(s.softening.data()) {}
-    HillerborgBars forRow(std::int32_t r, std::int64_t first) const {
-        HillerborgBars row = *this;
-        row.kappa += first, row.epsR += first, row.softeningRow += r;
-        return row;
-    }
-    bool softening() const { return *softeningRow; }
-    void markSoftening() const { *softeningRow = 1; }
-
-    double elastic(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                   double& gy, double& gz) const {
-        const BarStretch s = barStretch(fam, dux, duy, duz);
-        // Tension (F > 0) pulls node A towards node B: along +d.
-        const double Fl = EA * s.n * s.w;
-        gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-        return updateDamage(kappa[p], s.strain()) - epsP;
-    }
-    void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                    double& gy, double& gz) const {
-        const BarStretch s = barStretch(fam, dux, duy, duz);
-        const double eps = s.strain();
-        const double k = updateDamage(kappa[p], eps);
-        kappa[p] = k > epsP ? k : kappa[p];
-        const double Fl = EA * s.n * s.w * forceRatio(eps, k, epsP, epsR[p]);
-        gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-    }
-};
-
-// Calls the bar law (see above) for every bar of layer m, writing the force
+// Calls the bar law's row functor (laws/BarLaw.hpp) for every bar of layer m, writing the force
 // on its A node into the layer's g.
 template <class Law>
 void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers& g, const Law& law) {
@@ -201,9 +113,12 @@ void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Fiel
     }
 }
 
-// f = forces of all bars on the nodes at displacement u with the Hillerborg
-// law; updates the damage kappa of every bar.
-void computeInternalForces(const Lattice& lat, const Field3& u, BarState& bars, BarForceBuffers& g, Field3& f);
+// f = forces of all bars on the nodes at displacement u with the bar law
+// (laws/BarLaw.hpp); updates the law's state (damage) of every bar.
+template <class Law>
+void computeInternalForces(const Lattice& lat, const Field3& u, Law& law, BarForceBuffers& g, Field3& f) {
+    layeredForces(lat, u, g, f, law.rows(), [](int) {});
+}
 
 // y = K x for the undamaged, small-displacement stiffness K (K x = -internal force).
 void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers& g, Field3& y);
@@ -213,7 +128,9 @@ struct BarEnergies {
     double fracture = 0;   // dissipated by damage [J]
     std::int64_t damaged = 0, broken = 0;
 };
-BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarState& bars);
+
+// The sums of the law's energies and damage states over the bars at displacement u.
+BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarLaws& law);
 
 // Current strain of every bar.
 std::vector<double> barStrains(const Lattice& lat, const Field3& u);

@@ -3,7 +3,7 @@
 // default, unit, domain and help. The structs Material, LoadingParams and
 // RunParams are generated from these lists (LDEM_DECLARE_MEMBER), so are their
 // validation (LDEM_CHECK_MEMBER) and the access by name behind the Python
-// bindings (CubeTest.hpp); ldem.CubeTest and `ldem cube --help` are generated
+// bindings (ParameterTable.hpp); ldem.CubeTest and `ldem cube --help` are generated
 // from the table the bindings export. The defaults are the study's
 // (LDEM_SPEC section 6, Table 2).
 //

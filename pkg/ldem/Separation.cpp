@@ -30,13 +30,6 @@ private:
 };
 }  // namespace
 
-std::vector<std::uint8_t> intactBars(const BarState& bars) {
-    std::vector<std::uint8_t> intact(bars.kappa.size());
-#pragma omp parallel for schedule(static)
-    for (std::int64_t b = 0; b < std::int64_t(intact.size()); ++b) intact[b] = bars.kappa[b] < bars.epsR[b];
-    return intact;
-}
-
 namespace {
 // Rank 0's half of nodesJoined on a lattice split over ranks: each rank sent
 // (count, pairs (node, its root), count, roots of a's nodes, count, roots of

@@ -19,17 +19,6 @@ bool LoadLossDetector::update(double time, double stress, double peakStress, std
     return broken > 0 && time >= window_ && sum / recent_.size() < fraction_ * peakStress;
 }
 
-Simulation::Simulation(const CubeTestParams& p)
-    : Simulation(p.geometry.modules(), p.geometry.modules(), p.geometry.modules(), p.geometry.L0, p.material,
-                 p.loading, p.run) {}
-
-// Under mpirun, each rank builds and runs only its slab (Slab.hpp).
-Simulation::Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
-                       const RunParams& run)
-    : Simulation(cubeTestSpecimen(nx, ny, nz, L0, m, load, {},
-                                  slabLayers(nz, Comm::world().rank(), Comm::world().size())),
-                 m, load, run) {}
-
 Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run)
     : mat_(m), load_(load), run_(run) {
     mat_.validate();
@@ -83,23 +72,12 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
 
-    // Random G_f -> limit strain of each bar (the field itself is not kept).
+    // Random G_f -> the law's per-bar parameters (the field itself is not kept).
     {
-        const std::vector<double> gf = fractureEnergyField();
-        std::vector<double> epsR(lat_.numBars());
+        law_ = makeBarLaw(0, lat_, mat_, fractureEnergyField());
+        // each bar counted by the rank that owns it
+        clamped_ = commOf(lat_).sum(std::visit([](const auto& law) { return law.clampedOwnedBars(); }, law_));
         const auto owned = lat_.ownedBars();
-        for (const BarRow& row : lat_.barRows) {
-            const BarFamily& fam = lat_.families[row.family];
-            for (int p = 0; p < row.count; ++p) {
-                const std::int64_t b = row.first + p;
-                const double share = row.shareAt(p);
-                const LimitStrain ls = limitStrain(fam.Af * share, gf[b], fam.EA * share, mat_.epsP, fam.L);
-                epsR[b] = ls.epsR;
-                clamped_ += ls.clamped && b >= owned.first && b < owned.second;
-            }
-        }
-        bars_ = BarState(lat_, mat_.epsP, std::move(epsR));
-        clamped_ = commOf(lat_).sum(clamped_);  // each bar counted by the rank that owns it
         std::int64_t nodes = 0;
         for (int m = lat_.ownBegin; m < lat_.ownEnd; ++m) nodes += lat_.layerNodes(m).second;
         totalBars_ = commOf(lat_).sum(owned.second - owned.first), totalNodes_ = commOf(lat_).sum(nodes);
@@ -115,26 +93,55 @@ std::vector<double> Simulation::fractureEnergyField() const {
 
 std::vector<double> Simulation::ruptureEnergies() const {
     std::vector<double> e(lat_.numBars());
-    forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
-        const BarFamily& fam = lat_.families[row.family];
-        e[b] = ruptureEnergy(fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b], fam.L);
-    });
+    std::visit([&](const auto& law) {
+        forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
+            const BarFamily& fam = lat_.families[row.family];
+            e[b] = law.ruptureEnergy(b, fam.EA * row.shareAt(p), fam.L);
+        });
+    }, law_);
     return e;
 }
 
 std::vector<double> Simulation::barForces() const {
     const std::vector<double> eps = barStrains(lat_, u_);
     std::vector<double> f(lat_.numBars());
-    forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
-        const BarFamily& fam = lat_.families[row.family];
-        f[b] = hillerborgForce(eps[b], bars_.kappa[b], fam.EA * row.shareAt(p), bars_.epsP, bars_.epsR[b]);
-    });
+    std::visit([&](const auto& law) {
+        forEachBar(lat_, [&](std::int64_t b, std::int32_t, std::int32_t, const BarRow& row, int p) {
+            f[b] = law.force(b, lat_.families[row.family].EA * row.shareAt(p), eps[b]);
+        });
+    }, law_);
     return f;
+}
+
+const std::vector<double>& Simulation::barArray(const std::string& name) const {
+    return std::visit([&](const auto& law) -> const std::vector<double>& {
+        for (const auto& [key, values] : law.arrays())
+            if (key == name) return *values;
+        throw std::invalid_argument("the bar law has no per-bar array '" + name + "'");
+    }, law_);
+}
+
+double Simulation::lawConstant(const std::string& name) const {
+    return std::visit([&](const auto& law) {
+        for (const auto& [key, value] : law.constants())
+            if (key == name) return value;
+        throw std::invalid_argument("the bar law has no constant '" + name + "'");
+    }, law_);
+}
+
+std::vector<std::uint8_t> Simulation::damageStates() const {
+    std::vector<std::uint8_t> s(lat_.numBars());
+    std::visit([&](const auto& law) {
+        for (std::size_t b = 0; b < s.size(); ++b) s[b] = std::uint8_t(law.damage(std::int64_t(b)));
+    }, law_);
+    return s;
 }
 
 double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
 
-void Simulation::computeForces() { computeInternalForces(lat_, u_, bars_, g_, f_); }
+void Simulation::computeForces() {
+    std::visit([&](auto& law) { computeInternalForces(lat_, u_, law, g_, f_); }, law_);
+}
 
 const std::vector<std::int32_t>& Simulation::group(const std::string& name) const {
     const auto it = groups_.find(name);
@@ -151,7 +158,10 @@ double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
 double Simulation::supportStress() const { return (0.0 + meas_.sense() * groupForce(*support_)) / meas_.area; }
 
-bool Simulation::facesJoined() const { return nodesJoined(lat_, intactBars(bars_), *loaded_, *support_); }
+bool Simulation::facesJoined() const {
+    const std::vector<std::uint8_t> intact = std::visit([&](const auto& law) { return intactBars(lat_, law); }, law_);
+    return nodesJoined(lat_, intact, *loaded_, *support_);
+}
 
 // u[b] - u[a], read on the ranks that own b and a (a slab's probe node held
 // elsewhere is -1); the sum of +u[b] and -u[a] is exact in either order.
@@ -173,7 +183,7 @@ CurvePoint Simulation::measure() const {
     p.stress = supportStress();
     p.stressLoaded = (0.0 - meas_.sense() * groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
     for (const Probe& q : meas_.probes) p.probes.push_back(probe(q));
-    const BarEnergies e = barEnergies(lat_, u_, bars_);
+    const BarEnergies e = barEnergies(lat_, u_, law_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
     p.externalWork = externalWork_;
@@ -182,8 +192,10 @@ CurvePoint Simulation::measure() const {
 }
 
 void Simulation::step() {
-    layeredForces(lat_, u_, g_, f_, HillerborgBars(bars_),
-                  [this](int m) { layerDamping_[m] = advanceNodes(m); });
+    // One visit of the law per step: the layered pass is compiled for it.
+    std::visit([this](auto& law) {
+        layeredForces(lat_, u_, g_, f_, law.rows(), [this](int m) { layerDamping_[m] = advanceNodes(m); });
+    }, law_);
     finishStep();
 }
 
@@ -240,18 +252,31 @@ Checkpoint Simulation::checkpoint() const {
     if (lat_.isSlab()) throw std::logic_error("checkpoints of a run split over MPI ranks are not supported");
     if (!progress_.pendingAdvance)
         throw std::logic_error("a checkpoint is taken at a record, from run()'s observer");
-    return {u_, v_, f_, bars_.kappa, bars_.epsR, bars_.softening, time_, externalWork_, dampingWork_,
-            drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
+    Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_,
+                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
+    std::visit([&](const auto& law) {
+        for (const auto& [name, values] : law.arrays()) c.bars.emplace_back(name, *values);
+        c.softening = law.softeningRows();
+    }, law_);
+    return c;
 }
 
 void Simulation::restore(const Checkpoint& c) {
     if (lat_.isSlab()) throw std::invalid_argument("restarts of a run split over MPI ranks are not supported");
     const std::size_t n = std::size_t(lat_.numNodes()), b = std::size_t(lat_.numBars());
-    if (c.u.x.size() != n || c.v.x.size() != n || c.f.x.size() != n || c.kappa.size() != b || c.epsR.size() != b ||
-        c.softening.size() != lat_.barRows.size())
-        throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+    bool sizesMatch = c.u.x.size() == n && c.v.x.size() == n && c.f.x.size() == n &&
+                      c.softening.size() == lat_.barRows.size();
+    for (const auto& [name, values] : c.bars) sizesMatch = sizesMatch && values.size() == b;
+    if (!sizesMatch) throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+    std::visit([&](auto& law) {
+        const auto arrays = law.arrays();
+        bool sameLaw = arrays.size() == c.bars.size();
+        for (std::size_t k = 0; sameLaw && k < arrays.size(); ++k) sameLaw = arrays[k].first == c.bars[k].first;
+        if (!sameLaw) throw std::invalid_argument("the checkpoint is of another bar law (its per-bar arrays differ)");
+        for (std::size_t k = 0; k < arrays.size(); ++k) *arrays[k].second = c.bars[k].second;
+        law.softeningRows() = c.softening;
+    }, law_);
     u_ = c.u, v_ = c.v, f_ = c.f;
-    bars_.kappa = c.kappa, bars_.epsR = c.epsR, bars_.softening = c.softening;
     time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
     drive_.speedupStart = c.speedupStart, step_ = c.step;
     servo_.U = c.servoU, servo_.Uprev = c.servoUprev;

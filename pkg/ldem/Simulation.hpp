@@ -1,8 +1,8 @@
 // A run of a specimen (Specimen.hpp; the study's cube test, LDEM_SPEC section
-// 6, is one) from rest to separation: random G_f + the specimen's prescribed
-// DOFs + central differences + energy bookkeeping. run() is the time-step loop;
-// everything it calls per step is in InternalForces (bars), Integrator (nodes)
-// and Loading (the drive). A record step computes the same step in two halves
+// 6, is one) from rest to separation: random G_f + the bar law (laws/) + the
+// specimen's prescribed DOFs + central differences + energy bookkeeping. run()
+// is the time-step loop; everything it calls per step is in InternalForces
+// (bars, through the law), Integrator (nodes) and Loading (the drive). A record step computes the same step in two halves
 // (computeForces, measure, advance) so that state n can be measured between
 // them; the arithmetic is that of step(), bit for bit (tests/cpp/test_dynamics).
 #pragma once
@@ -16,7 +16,7 @@
 #include <utility>
 #include <vector>
 
-#include "ldem/CubeTest.hpp"
+#include "ldem/Field3.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
@@ -25,6 +25,7 @@
 #include "ldem/Modal.hpp"
 #include "ldem/RunParams.hpp"
 #include "ldem/Specimen.hpp"
+#include "ldem/laws/Registry.hpp"
 
 namespace ldem {
 
@@ -93,8 +94,8 @@ struct RunProgress {
 // to continue it (ldem.io.write_checkpoint stores it).
 struct Checkpoint {
     Field3 u, v, f;
-    std::vector<double> kappa, epsR;
-    std::vector<std::uint8_t> softening;
+    std::vector<std::pair<std::string, std::vector<double>>> bars;  // the law's per-bar state, by name
+    std::vector<std::uint8_t> softening;                             // the law's softening rows
     double time = 0, externalWork = 0, dampingWork = 0, speedupStart = 0;
     double servoU = 0, servoUprev = 0;  // the servo's drive displacement at t_n, t_n-1 (opening control)
     std::int64_t step = 0;
@@ -109,14 +110,10 @@ public:
 
 class Simulation {
 public:
-    // Runs any specimen: its lattice was built with material m; load gives the
-    // drive (rate, smooth start, speed-up after load loss).
+    // Runs any specimen (the cube test: cubeTestSpecimen): its lattice was
+    // built with material m; load gives the drive (rate, smooth start, speed-up
+    // after load loss).
     Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run);
-    // The cube test of nx x ny x nz modules (cubeTestSpecimen).
-    Simulation(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& load,
-               const RunParams& run);
-    // The cube of p.geometry (size / L0 modules a side).
-    explicit Simulation(const CubeTestParams& p);
     Simulation(const Simulation&) = delete;  // holds pointers into its own groups
     Simulation& operator=(const Simulation&) = delete;
 
@@ -152,13 +149,16 @@ public:
     const Measures& measures() const { return meas_; }
     const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
     const std::vector<std::int32_t>& group(const std::string& name) const;  // throws on an unknown name
-    const BarState& bars() const { return bars_; }
+    const BarLaws& law() const { return law_; }
+    // The law's per-bar state array `name` and its constant `name` (throw on an unknown name).
+    const std::vector<double>& barArray(const std::string& name) const;
+    double lawConstant(const std::string& name) const;
+    std::vector<std::uint8_t> damageStates() const;  // DamageState of every bar
     const Field3& displacements() const { return u_; }
     std::vector<double> fractureEnergyField() const;  // G_f of every bar (recomputed from the seed)
-    // Energy each bar dissipates when it breaks: A_f G_f, or 1/2 L EA eps_p^2 for a
-    // bar clamped to perfectly brittle (the capacities of the cheapest cut).
+    // Energy each bar dissipates when it breaks (the capacities of the cheapest cut).
     std::vector<double> ruptureEnergies() const;
-    // Axial force of every bar at the current state [N], tension positive (the law at its strain and kappa).
+    // Axial force of every bar at the current state [N], tension positive (the law at its strain and damage).
     std::vector<double> barForces() const;
     const Material& material() const { return mat_; }
     const LoadingParams& loading() const { return load_; }
@@ -206,7 +206,7 @@ private:
     Drive drive_;
     Servo servo_;
     double opening_ = 0;  // the controlled probe at the current state (opening control)
-    BarState bars_;
+    BarLaws law_;
     Field3 u_, v_, f_;  // per node
     BarForceBuffers g_;  // bar forces of the layers in use
     double dt_ = 0, Df_ = 0, time_ = 0, splitWindow_ = 0;

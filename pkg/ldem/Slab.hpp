@@ -21,7 +21,7 @@
 #include <vector>
 
 #include "ldem/Comm.hpp"
-#include "ldem/InternalForces.hpp"
+#include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
 
 namespace ldem {
@@ -34,6 +34,9 @@ inline std::pair<int, int> slabLayers(int nz, int rank, int ranks) {
                                     " module layers: at most one rank per module layer along z");
     return {int(std::int64_t(nz) * rank / ranks), int(std::int64_t(nz) * (rank + 1) / ranks)};
 }
+
+// This rank's module layers of nz (all of them without mpirun).
+inline std::pair<int, int> worldSlab(int nz) { return slabLayers(nz, Comm::world().rank(), Comm::world().size()); }
 
 // The ranks a lattice is split over: the world for a slab, this process alone otherwise.
 inline const Comm& commOf(const Lattice& lat) { return lat.isSlab() ? Comm::world() : Comm::self(); }

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "ldem/Slab.hpp"
+
 namespace ldem {
 
 void Prescribed::add(std::int32_t n, int d, double w) {
@@ -95,6 +97,11 @@ Specimen specimenSlab(int nx, int ny, int nz, double L0, const Material& m,
         if (q.a >= 0) q.a = lat.localNode(checked(q.a, "probe '" + q.name + "'"));
     }
     return s;
+}
+
+Specimen cubeTestSpecimen(const CubeTestParams& p) {
+    const int n = p.geometry.modules();
+    return cubeTestSpecimen(n, n, n, p.geometry.L0, p.material, p.loading, {}, worldSlab(n));
 }
 
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,

@@ -13,6 +13,7 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
+#include "ldem/ParameterTable.hpp"
 
 namespace ldem {
 
@@ -78,6 +79,10 @@ void validate(const Specimen& s);
 // slab: the module layers [k0, k1) this process owns (Slab.hpp); {0, -1}: all.
 Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, const LoadingParams& p,
                           const std::vector<std::uint8_t>& moduleMask = {}, std::pair<int, int> slab = {0, -1});
+// The cube test of p (p.geometry.modules() a side): under mpirun this rank's
+// slab (Slab.hpp), the whole cube otherwise. Run it with
+// Simulation(cubeTestSpecimen(p), p.material, p.loading, p.run).
+Specimen cubeTestSpecimen(const CubeTestParams& p);
 
 // A specimen described on the whole nx x ny x nz lattice (moduleMask as
 // buildLattice; groups, prescribed DOFs and probes by the whole lattice's node

@@ -6,19 +6,20 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include "ldem/CubeTest.hpp"
-#include "ldem/HillerborgLaw.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
 #include "ldem/Modal.hpp"
+#include "ldem/ParameterTable.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
 #include "ldem/Comm.hpp"
 #include "ldem/Slab.hpp"
 #include "ldem/Simulation.hpp"
+#include "ldem/Specimen.hpp"
+#include "ldem/laws/Registry.hpp"
 
 namespace py = pybind11;
 using namespace ldem;
@@ -51,7 +52,8 @@ py::dict checkpointDict(const Checkpoint& c) {
         d[(std::string(name) + "_y").c_str()] = toNumpy(f->y);
         d[(std::string(name) + "_z").c_str()] = toNumpy(f->z);
     }
-    d["kappa"] = toNumpy(c.kappa), d["eps_r"] = toNumpy(c.epsR), d["softening"] = toNumpy(c.softening);
+    for (const auto& [name, values] : c.bars) d[name.c_str()] = toNumpy(values);  // the law's (kappa, eps_r, ...)
+    d["softening"] = toNumpy(c.softening);
     const RunProgress& g = c.progress;
     const RunSummary& s = g.summary;
     d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxWork,
@@ -72,7 +74,9 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
         f->y = fromNumpy<double>(d[(std::string(name) + "_y").c_str()]);
         f->z = fromNumpy<double>(d[(std::string(name) + "_z").c_str()]);
     }
-    c.kappa = fromNumpy<double>(d["kappa"]), c.epsR = fromNumpy<double>(d["eps_r"]);
+    std::visit([&](const auto& law) {
+        for (const auto& [name, values] : law.arrays()) c.bars.emplace_back(name, fromNumpy<double>(d[name.c_str()]));
+    }, sim.law());
     c.softening = fromNumpy<std::uint8_t>(d["softening"]);
     const auto sc = fromNumpy<double>(d["scalars"]);
     const auto ct = fromNumpy<std::int64_t>(d["counters"]);
@@ -235,7 +239,7 @@ PYBIND11_MODULE(_core, m) {
            const std::vector<std::int32_t>& b) { return nodesJoined(lat, intact, a, b); },
         py::arg("lattice"), py::arg("intact"), py::arg("a"), py::arg("b"),
         "True if a chain of intact bars (intact[bar] != 0) joins a node of a to a node of b: Simulation.run's separation test");
-    // The law's damage states (HillerborgLaw.hpp), for outputs and pictures.
+    // The bar laws' damage states (pkg/ldem/laws/BarLaw.hpp), for outputs and pictures.
     m.attr("UNDAMAGED") = int(DamageState::Undamaged);
     m.attr("DAMAGED") = int(DamageState::Damaged);
     m.attr("BROKEN") = int(DamageState::Broken);
@@ -280,14 +284,11 @@ PYBIND11_MODULE(_core, m) {
     m.def("expected_node_count", &expectedNodeCount);
     m.def("expected_bar_count", &expectedBarCount);
 
-    // The law, for tests and for anyone who wants to plot it.
-    m.def("hillerborg_force", &hillerborgForce, py::arg("eps"), py::arg("kappa"), py::arg("EA"), py::arg("eps_p"),
-          py::arg("eps_r"));
-    m.def("dissipated_energy", &dissipatedEnergy, py::arg("kappa"), py::arg("EA"), py::arg("eps_p"),
-          py::arg("eps_r"), py::arg("L"));
-    m.def("limit_strain", [](double Af, double Gf, double EA, double epsP, double L) {
-        const LimitStrain ls = limitStrain(Af, Gf, EA, epsP, L);
-        return py::make_tuple(ls.epsR, ls.clamped);
+    // Every law's one-bar functions (pkg/ldem/laws/), for tests and for anyone who wants to plot them.
+    forEachLawType([&](auto* law) {
+        std::remove_pointer_t<decltype(law)>::singles([&](const char* name, const char* doc, auto f, auto... args) {
+            m.def(name, f, doc, py::arg(args)...);
+        });
     });
     m.def("nayfeh_delta", &nayfehDelta);
     m.def("nayfeh_phi", &nayfehPhi);
@@ -297,10 +298,11 @@ PYBIND11_MODULE(_core, m) {
     });
     m.def("max_threads", &maxThreads);
 
-    py::class_<Simulation>(m, "Simulation",
+    py::class_<Simulation> sim(m, "Simulation",
                            "a specimen and its run: Simulation(CubeTestParams) for a cube test, or "
-                           "Simulation(nx, ny, nz, L0, material, loading, run); run(observer) is the time-step loop")
-        .def("__repr__", [](const Simulation& s) {
+                           "Simulation(nx, ny, nz, L0, material, loading, run), or any specimen; run(observer) is "
+                           "the time-step loop");
+    sim.def("__repr__", [](const Simulation& s) {
             const Lattice& l = s.lattice();
             return "Simulation(" + std::to_string(l.nx) + " x " + std::to_string(l.ny) + " x " + std::to_string(l.nz) +
                    " modules, " + std::to_string(l.numBars()) + " bars, dt = " + formatNumber(s.dt()) + " s, step " +
@@ -309,13 +311,15 @@ PYBIND11_MODULE(_core, m) {
         .def(py::init([](int nx, int ny, int nz, double L0, const Material& mat, const LoadingParams& load,
                          const RunParams& run) {
                  py::gil_scoped_release release;  // the modal analysis can take seconds
-                 return std::make_unique<Simulation>(nx, ny, nz, L0, mat, load, run);
+                 // Under mpirun, this rank's slab only (pkg/ldem/Slab.hpp).
+                 return std::make_unique<Simulation>(cubeTestSpecimen(nx, ny, nz, L0, mat, load, {}, worldSlab(nz)),
+                                                     mat, load, run);
              }),
              py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("material"), py::arg("loading"),
              py::arg("run"))
         .def(py::init([](const CubeTestParams& p) {
                  py::gil_scoped_release release;
-                 return std::make_unique<Simulation>(p);
+                 return std::make_unique<Simulation>(cubeTestSpecimen(p), p.material, p.loading, p.run);
              }),
              py::arg("params"), "the cube test of params (ldem.CubeTest builds them)")
         .def(py::init([](int nx, int ny, int nz, double L0, const std::vector<std::uint8_t>& moduleMask,
@@ -339,10 +343,8 @@ PYBIND11_MODULE(_core, m) {
                  if (measures.contains("control")) ms.control = measures["control"].cast<int>();
                  py::gil_scoped_release release;
                  // Under mpirun, this rank's slab only (pkg/ldem/Slab.hpp).
-                 const Comm& world = Comm::world();
                  return std::make_unique<Simulation>(
-                     specimenSlab(nx, ny, nz, L0, mat, moduleMask, groups, node, dim, weight, ms,
-                                  slabLayers(nz, world.rank(), world.size())),
+                     specimenSlab(nx, ny, nz, L0, mat, moduleMask, groups, node, dim, weight, ms, worldSlab(nz)),
                      mat, load, run);
              }),
              py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("L0"), py::arg("module_mask"), py::arg("groups"),
@@ -435,20 +437,10 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("fracture_energy_field", [](const Simulation& s) { return toNumpy(s.fractureEnergyField()); })
         .def_property_readonly("rupture_energy", [](const Simulation& s) { return toNumpy(s.ruptureEnergies()); },
                                "energy each bar dissipates when it breaks [J] (A_f G_f; 1/2 L EA eps_p^2 if clamped)")
-        .def_property_readonly("kappa", [](const Simulation& s) { return toNumpy(s.bars().kappa); })
         .def_property_readonly("bytes_sent", [](const Simulation&) { return Comm::world().bytesSent(); },
                                "bytes this rank has sent to its neighbours (halo exchanges)")
-        .def_property_readonly("eps_r", [](const Simulation& s) { return toNumpy(s.bars().epsR); })
-        .def_property_readonly("eps_p", [](const Simulation& s) { return s.bars().epsP; })
-        .def_property_readonly(
-            "damage_state",
-            [](const Simulation& s) {
-                const BarState& b = s.bars();
-                std::vector<std::uint8_t> st(b.kappa.size());
-                for (std::size_t i = 0; i < st.size(); ++i) st[i] = std::uint8_t(damageState(b.kappa[i], b.epsP, b.epsR[i]));
-                return toNumpy(st);
-            },
-            "per bar: UNDAMAGED (kappa <= eps_p), DAMAGED, or BROKEN (kappa >= eps_r)")
+        .def_property_readonly("damage_state", [](const Simulation& s) { return toNumpy(s.damageStates()); },
+                               "per bar: UNDAMAGED, DAMAGED or BROKEN (by the bar law)")
         .def_property_readonly("bar_force", [](const Simulation& s) { return toNumpy(s.barForces()); },
                                "axial force of every bar [N], tension positive")
         .def_property_readonly("bar_strain", [](const Simulation& s) { return toNumpy(barStrains(s.lattice(), s.displacements())); })
@@ -459,4 +451,16 @@ PYBIND11_MODULE(_core, m) {
             for (py::ssize_t i = 0; i < py::ssize_t(u.x.size()); ++i) r(i, 0) = u.x[i], r(i, 1) = u.y[i], r(i, 2) = u.z[i];
             return a;
         });
+    // The bar laws' state by name: per-bar arrays (the Hillerborg law's kappa, eps_r) and constants (eps_p).
+    forEachLawType([&](auto* law) {
+        const std::remove_pointer_t<decltype(law)> names{};
+        for (const auto& a : names.arrays())
+            sim.def_property_readonly(a.first.c_str(), [name = a.first](const Simulation& s) {
+                return toNumpy(s.barArray(name));
+            });
+        for (const auto& c : names.constants())
+            sim.def_property_readonly(c.first.c_str(), [name = c.first](const Simulation& s) {
+                return s.lawConstant(name);
+            });
+    });
 }

@@ -32,7 +32,7 @@ TEST(Dynamics, TimeStepAboveStabilityLimitIsRefused) {
     LoadingParams lp;
     RunParams rp;
     rp.threads = 1;
-    const Simulation ref(3, 3, 3, kL0, m, lp, rp);
+    const Simulation ref(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
     const double limit = ref.stableTimeStepLimit();
     EXPECT_NEAR(limit, rp.dtSafety * 2 / ref.frequencies().omegaMax, 1e-15 * limit);
     EXPECT_EQ(ref.dt(), limit);  // dt = 0: the limit itself
@@ -40,7 +40,7 @@ TEST(Dynamics, TimeStepAboveStabilityLimitIsRefused) {
     RunParams over = rp;
     over.dt = 1.01 * limit;
     try {
-        Simulation sim(3, 3, 3, kL0, m, lp, over);
+        Simulation sim(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, over);
         ADD_FAILURE() << "a time step of 1.01 x the limit was accepted";
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("stability limit"), std::string::npos) << e.what();
@@ -49,13 +49,13 @@ TEST(Dynamics, TimeStepAboveStabilityLimitIsRefused) {
     RunParams bare = rp;
     bare.dtSafety = 1.0;
     bare.dt = 1.001 * 2 / ref.frequencies().omegaMax;
-    EXPECT_THROW(Simulation(3, 3, 3, kL0, m, lp, bare), std::invalid_argument);
+    EXPECT_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare), std::invalid_argument);
     bare.dt = 0.999 * 2 / ref.frequencies().omegaMax;
-    EXPECT_NO_THROW(Simulation(3, 3, 3, kL0, m, lp, bare));
+    EXPECT_NO_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare));
 
     RunParams under = rp;
     under.dt = 0.5 * limit;
-    const Simulation ok(3, 3, 3, kL0, m, lp, under);
+    const Simulation ok(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, under);
     EXPECT_EQ(ok.dt(), 0.5 * limit);
     // Damping coefficient D_f = 2 zeta omega_1.
     EXPECT_NEAR(ok.dampingCoefficient(), 2 * rp.zeta * ok.frequencies().omega1, 1e-12 * ok.dampingCoefficient());
@@ -89,9 +89,9 @@ BalanceStats undampedElasticRun(double strainRate, double rampSteps, int steps) 
     RunParams rp;
     rp.zeta = 0.0;
     rp.threads = 1;
-    Simulation probe(3, 3, 3, kL0, m, lp, rp);
+    Simulation probe(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
     if (rampSteps > 0) lp.rampTime = rampSteps * probe.dt();
-    Simulation sim(3, 3, 3, kL0, m, lp, rp);
+    Simulation sim(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
     EXPECT_EQ(sim.dampingCoefficient(), 0.0);
     EXPECT_EQ(sim.clampedBars(), sim.lattice().numBars());
     BalanceStats st;
@@ -149,7 +149,7 @@ TEST(Dynamics, WholeRunToLoadLossBalancesEnergy) {
     rp.seed = 3;
     rp.threads = 1;
     rp.stopAt = StopAt::LoadLoss;
-    Simulation sim(4, 4, 4, kL0, m, lp, rp);
+    Simulation sim(cubeTestSpecimen(4, 4, 4, kL0, m, lp), m, lp, rp);
     CurvePoint last, atPeak;
     std::vector<CurvePoint> all;
     double worst = 0;
@@ -221,7 +221,7 @@ TEST(Dynamics, InstabilityJustAboveTheLimitIsDetected) {
     rp.threads = 1;
     const int maxRecords = 300;  // 3000 steps
     {
-        Simulation sim(3, 3, 3, kL0, m, lp, rp);
+        Simulation sim(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
         sim.forceTimeStep(1.02 * 2 / sim.frequencies().omegaMax);
         int records = 0;
         try {
@@ -233,7 +233,7 @@ TEST(Dynamics, InstabilityJustAboveTheLimitIsDetected) {
         }
     }
     {
-        Simulation sim(3, 3, 3, kL0, m, lp, rp);
+        Simulation sim(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
         sim.forceTimeStep(0.98 * 2 / sim.frequencies().omegaMax);
         int records = 0;
         RunSummary s;
@@ -264,7 +264,7 @@ FullRun runWithThreads(int threads, std::uint64_t seed) {
     RunParams rp;
     rp.seed = seed;
     rp.threads = threads;
-    Simulation sim(3, 3, 3, kL0, m, lp, rp);
+    Simulation sim(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
     FullRun r;
     r.summary = sim.run([&](const CurvePoint& p) {
         r.curve.push_back(p);
@@ -272,7 +272,7 @@ FullRun runWithThreads(int threads, std::uint64_t seed) {
         return true;
     });
     r.ux = sim.displacements().x, r.uy = sim.displacements().y, r.uz = sim.displacements().z;
-    r.kappa = sim.bars().kappa;
+    r.kappa = sim.barArray("kappa");
     setThreads(1);
     return r;
 }
@@ -388,18 +388,18 @@ TEST(Dynamics, FusedAndSplitStepsAreBitIdentical) {
     lp.strainRate = 5.0;  // bars break within the steps below
     RunParams rp;
     rp.threads = 2;
-    Simulation fused(4, 4, 4, kL0, m, lp, rp), split(4, 4, 4, kL0, m, lp, rp);
+    Simulation fused(cubeTestSpecimen(4, 4, 4, kL0, m, lp), m, lp, rp), split(cubeTestSpecimen(4, 4, 4, kL0, m, lp), m, lp, rp);
     for (int n = 0; n < 3000; ++n) {
         fused.step();
         split.computeForces();
         split.advance();
     }
-    EXPECT_GT(std::count_if(fused.bars().kappa.begin(), fused.bars().kappa.end(),
+    EXPECT_GT(std::count_if(fused.barArray("kappa").begin(), fused.barArray("kappa").end(),
                             [&](double k) { return k > m.epsP; }),
               0);
     EXPECT_EQ(fused.displacements().x, split.displacements().x);
     EXPECT_EQ(fused.displacements().z, split.displacements().z);
-    EXPECT_EQ(fused.bars().kappa, split.bars().kappa);
+    EXPECT_EQ(fused.barArray("kappa"), split.barArray("kappa"));
     fused.computeForces(), split.computeForces();
     EXPECT_EQ(fused.measure().elastic, split.measure().elastic);
     EXPECT_EQ(fused.measure().damping, split.measure().damping);

@@ -71,7 +71,7 @@ ElasticResult pullOnRollers(int n, double zeta = 0.5, double strainRate = 0.02, 
     rp.threads = 1;
     rp.recordEvery = 1;
     const double L0 = 0.02;
-    Simulation sim(n, n, n, L0, m, lp, rp);
+    Simulation sim(cubeTestSpecimen(n, n, n, L0, m, lp), m, lp, rp);
     CurvePoint last;
     sim.run([&](const CurvePoint& p) {
         last = p;

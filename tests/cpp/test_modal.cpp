@@ -13,6 +13,7 @@
 
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
+#include "ldem/laws/Hillerborg.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Modal.hpp"
 #include "ldem/Specimen.hpp"
@@ -169,7 +170,7 @@ TEST(Modal, OneModuleIsAMechanismAndIsRefused) {
     EXPECT_NEAR(f.omegaMax, std::sqrt(lmax), 1e-9 * std::sqrt(lmax));
     EXPECT_LE(f.iterations, 11);
     try {
-        Simulation sim(1, 1, 1, 0.02, m, LoadingParams{}, RunParams{});
+        Simulation sim(cubeTestSpecimen(1, 1, 1, 0.02, m, LoadingParams{}), m, LoadingParams{}, RunParams{});
         ADD_FAILURE() << "a mechanism was accepted";
     } catch (const std::invalid_argument& e) {
         EXPECT_NE(std::string(e.what()).find("mechanism"), std::string::npos) << e.what();
@@ -177,7 +178,7 @@ TEST(Modal, OneModuleIsAMechanismAndIsRefused) {
     // Held laterally at the top, the same module is stable and runs.
     LoadingParams held;
     held.topLateralFree = false;
-    Simulation sim(1, 1, 1, 0.02, m, held, RunParams{});
+    Simulation sim(cubeTestSpecimen(1, 1, 1, 0.02, m, held), m, held, RunParams{});
     EXPECT_GT(sim.frequencies().omega1, 0.1 * sim.frequencies().omegaMax);
 }
 // Clamped bottom (default): omega_1 is a lateral sway, 0.81 x sqrt(R_sway).
@@ -221,7 +222,7 @@ TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
         EXPECT_NEAR(y.z[i], yv(3 * i + 2), 1e-12 * scale);
     }
     // Small displacements through the nonlinear force loop give -K x too.
-    BarState bars(lat, 1.0, std::vector<double>(lat.numBars(), 1.0));
+    HillerborgLaw bars(lat, 1.0, std::vector<double>(lat.numBars(), 1.0));
     Field3 small(lat.numNodes()), f(lat.numNodes());
     const double a = 1e-9;  // displacement amplitude [m]: geometric nonlinearity ~ a / L0 = 5e-8
     for (std::int64_t i = 0; i < lat.numNodes(); ++i)

@@ -1,4 +1,4 @@
-// The parameter table (Parameters.hpp, CubeTest.hpp): every parameter once,
+// The parameter table (Parameters.hpp, ParameterTable.hpp): every parameter once,
 // with a default inside its domain, reachable by name, checked on validate().
 #include <gtest/gtest.h>
 
@@ -7,7 +7,7 @@
 #include <set>
 #include <string>
 
-#include "ldem/CubeTest.hpp"
+#include "ldem/ParameterTable.hpp"
 #include "ldem/Simulation.hpp"
 
 using namespace ldem;
@@ -94,7 +94,7 @@ TEST(Parameters, BadNamesTypesAndValuesAreOneLineErrorsNamingTheParameter) {
 TEST(Parameters, SimulationOfTheParametersIsTheCubeTheyDescribe) {
     CubeTestParams p;
     setParameter(p, "size", 0.06);
-    const Simulation sim(p);
+    const Simulation sim(cubeTestSpecimen(p), p.material, p.loading, p.run);
     EXPECT_EQ(sim.lattice().nx, 3);
     EXPECT_EQ(sim.lattice().nz, 3);
     EXPECT_EQ(sim.lattice().L0, 0.02);

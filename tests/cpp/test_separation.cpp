@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "ldem/Lattice.hpp"
+#include "ldem/laws/Hillerborg.hpp"
 #include "ldem/Separation.hpp"
 
 using namespace ldem;
@@ -83,10 +84,10 @@ TEST(Separation, OneChainOfBarsKeepsItJoined) {
 
 TEST(Separation, BrokenMeansKappaReachedEpsR) {
     const Specimen s = column(1);
-    BarState state(s.lat, 1e-4, std::vector<double>(s.lat.numBars(), 3e-4));
+    HillerborgLaw state(s.lat, 1e-4, std::vector<double>(s.lat.numBars(), 3e-4));
     state.kappa[0] = 2.999e-4;  // damaged, still carries tension
     state.kappa[1] = 3e-4;      // broken
-    const auto intact = intactBars(state);
+    const auto intact = intactBars(s.lat, state);
     EXPECT_EQ(intact[0], 1);
     EXPECT_EQ(intact[1], 0);
     EXPECT_EQ(intact[2], 1);

@@ -90,7 +90,8 @@ TEST(DirectSpecimen, MinFractureEnergyIsGfTimesTheCrossSection) {
     RunParams rp;
     rp.threads = 1;
     const double L0 = 0.02, area = 3 * L0 * 2 * L0;
-    const Simulation sim(3, 2, 2, L0, m, LoadingParams{}, rp);
+    const LoadingParams lp;
+    const Simulation sim(cubeTestSpecimen(3, 2, 2, L0, m, lp), m, lp, rp);
     EXPECT_NEAR(sim.measures().area, area, 1e-15 * area);
     EXPECT_NEAR(sim.minFractureEnergy(), 80.0 * area, 1e-15 * 80.0 * area);
 }
@@ -154,7 +155,7 @@ TEST(Specimen, APrismPulledAlongXIsTheCubeTestsPrismPulledAlongZ) {
     LoadingParams lp;
     lp.strainRate = 0.1;
     Simulation alongX(prismPulledAlongX(m), m, lp, rp);
-    Simulation alongZ(2, 2, 4, 0.02, m, lp, rp);
+    Simulation alongZ(cubeTestSpecimen(2, 2, 4, 0.02, m, lp), m, lp, rp);
     EXPECT_NEAR(alongX.frequencies().omegaMax, alongZ.frequencies().omegaMax, 1e-9 * alongZ.frequencies().omegaMax);
     EXPECT_NEAR(alongX.frequencies().omega1, alongZ.frequencies().omega1, 1e-6 * alongZ.frequencies().omega1);
     EXPECT_NEAR(alongX.dt(), alongZ.dt(), 1e-9 * alongZ.dt());
@@ -192,7 +193,7 @@ TEST(Specimen, AFullMaskIsTheCubeTestAndAClippedPrismStandsOnItsOwnFace) {
     RunParams rp;
     rp.threads = 1, rp.stopAt = StopAt::LoadLoss, rp.recordEvery = 50;
     const std::vector<std::uint8_t> ones(3 * 3 * 3, 1);
-    Simulation full(cubeTestSpecimen(3, 3, 3, 0.02, m, lp, ones), m, lp, rp), cube(3, 3, 3, 0.02, m, lp, rp);
+    Simulation full(cubeTestSpecimen(3, 3, 3, 0.02, m, lp, ones), m, lp, rp), cube(cubeTestSpecimen(3, 3, 3, 0.02, m, lp), m, lp, rp);
     EXPECT_DOUBLE_EQ(full.measures().area, cube.measures().area);
     std::vector<CurvePoint> a, b;
     full.run([&](const CurvePoint& p) { a.push_back(p); return a.size() < 30; });
@@ -220,7 +221,7 @@ TEST(Specimen, APushIsMeasuredPositive) {
     Specimen pushed = cubeTestSpecimen(2, 2, 4, 0.02, m, lp);
     for (double& w : pushed.prescribed.weight) w = -w;
     pushed.measures.meanDriveWeight = -pushed.measures.meanDriveWeight;
-    Simulation push(std::move(pushed), m, lp, rp), pull(2, 2, 4, 0.02, m, lp, rp);
+    Simulation push(std::move(pushed), m, lp, rp), pull(cubeTestSpecimen(2, 2, 4, 0.02, m, lp), m, lp, rp);
     std::vector<CurvePoint> a, b;
     push.run([&](const CurvePoint& p) { a.push_back(p); return a.size() < 12; });
     pull.run([&](const CurvePoint& p) { b.push_back(p); return b.size() < 12; });

@@ -186,3 +186,66 @@ def test_the_script_check_sees_a_case_runner(tmp_path):
                       "def finished(case):\n    return True\npool = multiprocessing.Pool(2)\n")
     assert _case_runner_parts(str(script)) == ["imports multiprocessing", "imports concurrent.futures",
                                                "defines finished()", "uses Pool"]
+
+
+# -- the C++ core: a bar law is one header in pkg/ldem/laws/ ----------------------------
+LAWS = os.path.join(ROOT, "pkg", "ldem", "laws")
+LAW_INTERFACE = {"BarLaw.hpp", "Registry.hpp"}  # what every law shares, and the list of them
+
+
+def _law_internals(header):
+    """The names a law keeps to itself: its class, its namespace, and the functions in that namespace."""
+    import re
+    text = open(header).read()
+    names = set(re.findall(r"^class (\w+Law)\b", text, re.M))
+    for ns in re.findall(r"^namespace (\w+) \{", text, re.M):
+        if ns == "ldem":
+            continue
+        names.add(ns + "::")
+        body = text.split(f"namespace {ns} {{", 1)[1].split(f"}}  // namespace {ns}", 1)[0]
+        names |= set(re.findall(r"^inline [\w:<>]+ (\w+)\(", body, re.M))
+        names |= set(re.findall(r"^struct (\w+)", body, re.M))
+    return names
+
+
+def _cpp_sources_outside_laws():
+    for top in (os.path.join(ROOT, "pkg"), os.path.join(ROOT, "py", "src")):
+        for folder, _, files in os.walk(top):
+            if os.path.abspath(folder).startswith(os.path.abspath(LAWS)):
+                continue
+            for f in files:
+                if f.endswith((".hpp", ".cpp")):
+                    yield os.path.join(folder, f)
+
+
+def _references(names, sources):
+    import re
+    found = []
+    for path in sources:
+        text = open(path).read()
+        for name in names:
+            pattern = re.escape(name) if name.endswith("::") else r"\b" + re.escape(name) + r"\b"
+            if re.search(pattern, text):
+                found.append(f"{os.path.relpath(path, ROOT)} names {name}")
+    return found
+
+
+def test_no_cpp_file_outside_the_laws_names_a_laws_internals():
+    """computeInternalForces, barEnergies, Simulation and the bindings go through the
+    law's interface (laws/BarLaw.hpp) and the registry: only pkg/ldem/laws/ names a
+    law's class, namespace or functions (the law's own tests in tests/cpp may)."""
+    headers = [os.path.join(LAWS, f) for f in sorted(os.listdir(LAWS)) if f.endswith(".hpp") and f not in LAW_INTERFACE]
+    assert headers, "no law in pkg/ldem/laws/"
+    internals = set().union(*map(_law_internals, headers))
+    assert {"HillerborgLaw", "hillerborg::", "limitStrain", "secantRatio", "dissipatedEnergy"} <= internals, internals
+    wrong = _references(internals, _cpp_sources_outside_laws())
+    assert not wrong, "a law's internals named outside pkg/ldem/laws/:\n" + "\n".join(wrong)
+
+
+def test_the_law_check_sees_a_direct_call(tmp_path):
+    """The check above on a made-up source that calls the law's force directly."""
+    src = tmp_path / "Simulation.cpp"
+    src.write_text("double f = hillerborg::axialForce(eps, k, EA, epsP, epsR);\nlimitStrain(1, 2, 3, 4, 5);\n")
+    internals = _law_internals(os.path.join(LAWS, "Hillerborg.hpp"))
+    assert sorted(_references(internals, [str(src)])) == [
+        f"{os.path.relpath(src, ROOT)} names {n}" for n in sorted(["axialForce", "hillerborg::", "limitStrain"])]

@@ -346,7 +346,7 @@ def test_limit_strains_clamping_rupture_energy(cv):
 
 
 # Found by this reference: rupture_energy was 0 for every clamped bar (fixed:
-# HillerborgLaw.hpp ruptureEnergy), which weakened the cheapest-cut bound.
+# laws/Hillerborg.hpp ruptureEnergy), which weakened the cheapest-cut bound.
 def test_rupture_energy_of_clamped_bars():
     p = Pair(4, 4, 4, seed=5, cv=1.0)
     s, lat, mat = p.sim, p.lat, p.mat

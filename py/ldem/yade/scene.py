@@ -222,7 +222,7 @@ class RuptureGuard:
 
     def fracture_energy(self):
         """Energy dissipated by the bars [J]: ldem's own law, dissipatedEnergy(kappa)
-        (HillerborgLaw.hpp), summed over the bars (called at the run's events only)."""
+        (pkg/ldem/laws/Hillerborg.hpp), summed over the bars (called at the run's events only)."""
         b = self.bars
         return float(sum(_core.dissipated_energy(float(k), float(EA), float(ep), float(er), float(L))
                          for k, EA, ep, er, L in zip(self.kappa, b.EA, b.eps_p, b.eps_r, b.L)))

@@ -1,4 +1,4 @@
-#include "ldem/CubeTest.hpp"
+#include "ldem/ParameterTable.hpp"
 
 #include <climits>
 #include <cmath>

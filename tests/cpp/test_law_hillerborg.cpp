@@ -9,14 +9,15 @@
 #include <numeric>
 #include <vector>
 
-#include "ldem/HillerborgLaw.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Simulation.hpp"
+#include "ldem/laws/Hillerborg.hpp"
 
 using namespace ldem;
+using namespace ldem::hillerborg;
 
 namespace {
 
@@ -32,7 +33,7 @@ struct Bar {
 
 // Force along the loading envelope (monotonic pull): kappa = eps.
 double envelope(const Bar& b, double eps) {
-    return hillerborgForce(eps, updateDamage(0.0, eps), b.EA, b.epsP, b.epsR());
+    return axialForce(eps, updateDamage(0.0, eps), b.EA, b.epsP, b.epsR());
 }
 
 // Work of the envelope force from 0 to e, L * integral F d(eps), by a fine
@@ -104,17 +105,17 @@ TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
     const Bar b;
     const double epsR = b.epsR();
     for (double kappa : {2 * b.epsP, 0.5 * (b.epsP + epsR), 0.9 * epsR}) {
-        const double Fk = hillerborgForce(kappa, kappa, b.EA, b.epsP, epsR);
+        const double Fk = axialForce(kappa, kappa, b.EA, b.epsP, epsR);
         ASSERT_GT(Fk, 0.0);
         ASSERT_LT(Fk, b.EA * b.epsP);
         const double secant = b.EA * b.epsP * (epsR - kappa) / (kappa * (epsR - b.epsP));  // by hand
         for (double eps : {0.9 * kappa, 0.5 * kappa, 1e-3 * kappa})
-            EXPECT_NEAR(hillerborgForce(eps, kappa, b.EA, b.epsP, epsR), secant * eps, 1e-12 * secant * eps)
+            EXPECT_NEAR(axialForce(eps, kappa, b.EA, b.epsP, epsR), secant * eps, 1e-12 * secant * eps)
                 << "kappa " << kappa << ", eps " << eps;
         // Force at kappa/2 on the unloading branch = half the envelope force at kappa.
-        EXPECT_NEAR(hillerborgForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
+        EXPECT_NEAR(axialForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
         // Linear through the origin everywhere below kappa.
-        EXPECT_NEAR(hillerborgForce(0.2 * kappa, kappa, b.EA, b.epsP, epsR), 0.2 * Fk, 1e-12 * Fk);
+        EXPECT_NEAR(axialForce(0.2 * kappa, kappa, b.EA, b.epsP, epsR), 0.2 * Fk, 1e-12 * Fk);
         // Reloading to kappa gets back the envelope; damage does not grow below kappa.
         EXPECT_EQ(updateDamage(kappa, 0.5 * kappa), kappa);
         EXPECT_EQ(updateDamage(kappa, -kappa), kappa);
@@ -126,7 +127,7 @@ TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
         EXPECT_NEAR(secantRatio(kappa, b.epsP, epsR), Fk / (b.EA * kappa), 1e-12);
     }
     // Below eps_p there is no damage: unloading is elastic with full stiffness.
-    EXPECT_DOUBLE_EQ(hillerborgForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
+    EXPECT_DOUBLE_EQ(axialForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
 
     // The same through the force loop: one module expanded uniformly by
     // eps = 1.5 eps_p, every bar damaged to kappa = 3 eps_p with eps_r = 10 eps_p,
@@ -136,7 +137,7 @@ TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
     const Material m;
     const double L0 = 0.02, eps = 1.5 * m.epsP, s = 7.0 / 27;
     const Lattice lat = buildCubicLattice(1, 1, 1, L0, m);
-    BarState bars(lat, m.epsP, std::vector<double>(lat.numBars(), 10 * m.epsP));
+    HillerborgLaw bars(lat, m.epsP, std::vector<double>(lat.numBars(), 10 * m.epsP));
     std::fill(bars.kappa.begin(), bars.kappa.end(), 3 * m.epsP);
     bars.softening.assign(bars.softening.size(), 1);
     const auto x0 = nodePositions(lat);
@@ -162,9 +163,10 @@ TEST(DirectLaw, EachBarsLimitStrainUsesItsOwnLength) {
     RunParams rp;
     rp.threads = 1;
     const double L0 = 0.02;
-    const Simulation sim(2, 2, 2, L0, m, LoadingParams{}, rp);
+    const LoadingParams lp;
+    const Simulation sim(cubeTestSpecimen(2, 2, 2, L0, m, lp), m, lp, rp);
     const BarTable t = listBars(sim.lattice());
-    const std::vector<double>& epsR = sim.bars().epsR;
+    const std::vector<double>& epsR = std::get<HillerborgLaw>(sim.law()).epsR;
     ASSERT_EQ(epsR.size(), t.L.size());
     int diagonals = 0;
     for (std::size_t b = 0; b < epsR.size(); ++b) {
@@ -184,12 +186,12 @@ TEST(HillerborgLaw, CompressionIsElasticEvenAfterRupture) {
     const double epsR = b.epsR();
     for (double kappa : {0.0, 0.5 * b.epsP, 3 * b.epsP, epsR, 5 * epsR}) {
         for (double eps : {-1e-5, -1e-3}) {
-            EXPECT_DOUBLE_EQ(hillerborgForce(eps, kappa, b.EA, b.epsP, epsR), b.EA * eps);
+            EXPECT_DOUBLE_EQ(axialForce(eps, kappa, b.EA, b.epsP, epsR), b.EA * eps);
             EXPECT_DOUBLE_EQ(storedEnergy(eps, kappa, b.EA, b.epsP, epsR, b.L), 0.5 * b.EA * eps * eps * b.L);
         }
     }
     // A broken bar carries no tension at any strain.
-    EXPECT_EQ(hillerborgForce(0.5 * epsR, 2 * epsR, b.EA, b.epsP, epsR), 0.0);
+    EXPECT_EQ(axialForce(0.5 * epsR, 2 * epsR, b.EA, b.epsP, epsR), 0.0);
 }
 
 TEST(HillerborgLaw, SnapBackIsClampedToPerfectlyBrittle) {
@@ -202,10 +204,10 @@ TEST(HillerborgLaw, SnapBackIsClampedToPerfectlyBrittle) {
     EXPECT_EQ(ls.epsR, b.epsP);
     // The clamped bar is elastic up to eps_p (inclusive), then carries nothing.
     const double past = b.epsP * (1 + 1e-12);
-    EXPECT_DOUBLE_EQ(hillerborgForce(b.epsP, b.epsP, b.EA, b.epsP, ls.epsR), b.EA * b.epsP);
-    EXPECT_EQ(hillerborgForce(past, past, b.EA, b.epsP, ls.epsR), 0.0);
-    EXPECT_EQ(hillerborgForce(0.5 * b.epsP, past, b.EA, b.epsP, ls.epsR), 0.0);
-    EXPECT_DOUBLE_EQ(hillerborgForce(0.99 * b.epsP, 0.99 * b.epsP, b.EA, b.epsP, ls.epsR), 0.99 * b.EA * b.epsP);
+    EXPECT_DOUBLE_EQ(axialForce(b.epsP, b.epsP, b.EA, b.epsP, ls.epsR), b.EA * b.epsP);
+    EXPECT_EQ(axialForce(past, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_EQ(axialForce(0.5 * b.epsP, past, b.EA, b.epsP, ls.epsR), 0.0);
+    EXPECT_DOUBLE_EQ(axialForce(0.99 * b.epsP, 0.99 * b.epsP, b.EA, b.epsP, ls.epsR), 0.99 * b.EA * b.epsP);
     // It dissipates its whole elastic energy 1/2 L EA eps_p^2 (> A_f G_f) once past eps_p.
     EXPECT_EQ(dissipatedEnergy(b.epsP, b.EA, b.epsP, ls.epsR, b.L), 0.0);
     EXPECT_DOUBLE_EQ(dissipatedEnergy(past, b.EA, b.epsP, ls.epsR, b.L), 0.5 * b.L * b.EA * b.epsP * b.epsP);
@@ -252,7 +254,7 @@ TEST(HillerborgLaw, OneModuleExpansionThroughForceLoop) {
         maxEpsR = std::max(maxEpsR, ls.epsR);
         minEpsR = std::min(minEpsR, ls.epsR);
     }
-    BarState bars(lat, m.epsP, std::move(epsR));
+    HillerborgLaw bars(lat, m.epsP, std::move(epsR));
     Field3 u(lat.numNodes()), f(lat.numNodes());
     BarForceBuffers g;
     // Generalised force conjugate to s: dW = -f . x0 ds (the force the loader applies is -f).
@@ -329,7 +331,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
     const auto x0 = nodePositions(lat);
     std::vector<double> epsR(nb);
     for (std::int64_t b = 0; b < nb; ++b) epsR[b] = m.epsP * (1 + 4 * hashedUniform(5, b, 0));
-    BarState bars(lat, m.epsP, epsR);
+    HillerborgLaw bars(lat, m.epsP, epsR);
     for (std::int64_t b = 0; b < nb; ++b)
         if (hashedUniform(5, b, 1) < 1.0 / 3) bars.kappa[b] = m.epsP + (epsR[b] - m.epsP) * hashedUniform(5, b, 2);
     const std::vector<double> kappa0 = bars.kappa;
@@ -356,7 +358,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
         const double eps = double((l - t.L[b]) / t.L[b]);
         const double k = updateDamage(kappa0[b], eps);
         kappa1[b] = k > m.epsP ? k : kappa0[b];
-        const long double F = hillerborgForce(eps, k, t.EA[b], m.epsP, epsR[b]);
+        const long double F = axialForce(eps, k, t.EA[b], m.epsP, epsR[b]);
         regimes[eps <= 0 ? 4 : k <= m.epsP ? 0 : k >= epsR[b] ? 3 : eps >= kappa0[b] ? 1 : 2]++;
         for (int i = 0; i < 3; ++i) {
             std::vector<long double>& r = i == 0 ? rx : i == 1 ? ry : rz;
@@ -376,4 +378,39 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
         }
         for (std::int64_t b = 0; b < nb; ++b) ASSERT_NEAR(bars.kappa[b], kappa1[b], 1e-12 * m.epsP) << "bar " << b;
     }
+}
+
+// The law realised from the material and a G_f field (what Simulation does):
+// each bar, surface edges with their share k/4 of EA and A_f, dissipates
+// exactly its own A_f G_f when it breaks (1/2 L EA eps_p^2 if clamped), and
+// the clamped count is the bars whose triangle would snap back.
+TEST(HillerborgLaw, RealisedBarsDissipateTheirOwnAfGf) {
+    Material m;
+    const Lattice lat = buildCubicLattice(3, 2, 2, 0.02, m);
+    const BarTable t = listBars(lat);
+    const std::int64_t nb = lat.numBars();
+    std::vector<double> Gf(nb);
+    for (std::int64_t b = 0; b < nb; ++b) Gf[b] = 0.5 + 150 * hashedUniform(7, b, 0);  // some bars snap back
+    const HillerborgLaw law(lat, m, Gf);
+    std::int64_t clamped = 0, surfaceEdges = 0;
+    for (std::int64_t b = 0; b < nb; ++b) {
+        const double brittle = 0.5 * t.L[b] * t.EA[b] * m.epsP * m.epsP;  // the elastic triangle up to eps_p
+        const bool snapsBack = t.Af[b] * Gf[b] < brittle;
+        clamped += snapsBack;
+        surfaceEdges += t.share[b] < 1;
+        const double expected = snapsBack ? brittle : t.Af[b] * Gf[b];
+        EXPECT_NEAR(law.ruptureEnergy(b, t.EA[b], t.L[b]), expected, 1e-12 * expected) << "bar " << b;
+        // Pulled past eps_r, it has dissipated exactly that, carries no tension and is broken.
+        const double past = 1.01 * law.epsR[b];
+        EXPECT_NEAR(law.dissipated(b, t.EA[b], t.L[b], past), expected, 1e-12 * expected) << "bar " << b;
+        EXPECT_EQ(law.damage(b, past), DamageState::Broken);
+        EXPECT_EQ(law.stored(b, t.EA[b], t.L[b], past), 0.0);
+        // Unloaded and undamaged: intact, elastic force EA eps.
+        EXPECT_TRUE(law.intact(b));
+        EXPECT_DOUBLE_EQ(law.force(b, t.EA[b], -1e-4), -1e-4 * t.EA[b]);
+    }
+    EXPECT_EQ(law.clampedOwnedBars(), clamped);
+    EXPECT_GT(clamped, 0);
+    EXPECT_LT(clamped, nb / 2);
+    EXPECT_GT(surfaceEdges, 0);
 }

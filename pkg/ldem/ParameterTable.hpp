@@ -1,6 +1,7 @@
-// The parameters of a cube test, whole and by name: the table of every
-// parameter (from the lists of Parameters.hpp) and access by name, for the
-// Python bindings, ldem.CubeTest and its command line.
+// The parameter table: every parameter of a cube test, whole (CubeTestParams)
+// and by name, generated from the lists of Parameters.hpp, for the Python
+// bindings, ldem.CubeTest and its command line. The cube itself is built by
+// cubeTestSpecimen (Specimen.hpp).
 #pragma once
 #include <cstdint>
 #include <string>

@@ -1,0 +1,57 @@
+// What every bar law provides (laws/Hillerborg.hpp is one; laws/Registry.hpp
+// lists them). A law is one class holding its constants and the state of every
+// bar, built from the lattice, the material and the random G_f field:
+//
+//   Law(lat, material, Gf)         realises the per-bar parameters (e.g. limit strains);
+//   rows()                         the row functor of the force loop (below), with its
+//                                  elastic fast path;
+//   force(b, EA, eps)              the axial force of bar b alone at strain eps [N];
+//   stored(b, EA, L, eps), dissipated(b, EA, L, eps)   its energies at strain eps [J];
+//   damage(b, eps = 0)             its DamageState (at strain eps, or as it stands);
+//   ruptureEnergy(b, EA, L)        the energy bar b dissipates when it breaks [J];
+//   intact(b)                      bar b can still carry tension;
+//   clampedOwnedBars()             bars of this rank whose parameters had to be clamped;
+//   arrays() / softeningRows()          the state a checkpoint stores, by name;
+//   constants()                    the constants common to all bars, by name;
+//   static singles(def)            its one-bar functions for Python (LAMMPS's `single`).
+//
+// The row functor: for bar row r, whose bars are first, first + 1, ...,
+// rows().forRow(r, first) gives the law of that row (state pointers advanced,
+// so that the loops index them from 0):
+//   rowLaw.softening()     true once some bar of the row has left the elastic range;
+//   rowLaw.markSoftening() marks it so;
+//   rowLaw.elastic(p, fam, EA, dux, duy, duz, gx, gy, gz)   writes in g the force
+//       on bar p's A node as if the bar were elastic, and returns a number > 0
+//       if it may not be (the row then goes through the full law and is marked softening);
+//   rowLaw(p, fam, EA, dux, duy, duz, gx, gy, gz)   the full law: the same, with damage.
+// du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
+#pragma once
+#include <cmath>
+
+#include "ldem/Lattice.hpp"
+
+namespace ldem {
+
+enum class DamageState : unsigned char { Undamaged = 0, Damaged = 1, Broken = 2 };
+
+// The stretch of a bar from its reference vector d0 (length L) and the
+// relative displacement du of its ends, without cancellation:
+//   n = l^2 - L^2 = 2 d0.du + du.du   =>   eps = (l - L)/L = n / ((l + L) L).
+// One division serves the strain and the force per unit length F/l, which
+// turns the force into its components (F d/l):
+//   w = 1 / ((l + L) L l),   eps = n w l,   F/l = EA eps r / l = EA n w r,
+// with r = F/(EA eps) the law's force ratio (1 while the bar is elastic).
+struct BarStretch {
+    double dx, dy, dz;  // current bar vector d0 + du [m]
+    double l, n, w;
+    double strain() const { return n * w * l; }
+};
+
+inline BarStretch barStretch(const BarFamily& fam, double dux, double duy, double duz) {
+    const double dx = fam.d0[0] + dux, dy = fam.d0[1] + duy, dz = fam.d0[2] + duz;
+    const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
+    const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
+    return {dx, dy, dz, l, n, 1 / ((l + fam.L) * fam.L * l)};
+}
+
+}  // namespace ldem
