@@ -108,6 +108,11 @@ def report_run(result, args, edge: bool = False) -> int:
           f"{s['wall_s']:.1f} s wall{ranks}")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
+    if s["quasi_static"]["flagged"]:
+        print(f"ldem {args.command}: warning: not quasi-static: the kinetic energy at the peak is "
+              f"{s['quasi_static']['kinetic_over_work_at_peak']:.1%} of the external work (above "
+              f"{s['quasi_static']['kinetic_limit']:.0%}): the peak depends on the strain rate; lower it "
+              f"(summary.json: quasi_static)", file=sys.stderr)
     f = args.figure_format
     print(f"wrote {args.out}/: curve.csv summary.json"
           + ("" if args.no_plots else f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
