@@ -86,6 +86,10 @@ def _snapshots(args) -> list:
         raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
 
 
+# The stops other than separation, as report_run says them.
+_STOPS = {"final_strain": "the final strain", "stopped": "an observer's request"}
+
+
 def report_run(result, args, edge: bool = False) -> int:
     """The lines a run prints (ldem cube, ldem run); exit 1 on an energy error."""
     s, test = result.summary, result.test
@@ -101,8 +105,9 @@ def report_run(result, args, edge: bool = False) -> int:
         print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
               f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J{cut})")
     elif test.stop_at == "separation":
-        print(f"NOT separated (stop: {s['stop_reason']}): fracture energy at the end {s['fracture_energy_J']:.4g} J "
-              f"is not U_num")
+        end = result.curve["mean_strain"][-1]
+        print(f"stopped at {_STOPS.get(s['stop_reason'], s['stop_reason'])} (mean strain {end:.4e}) before "
+              f"separation: the fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
     ranks = f" on {s['mpi_ranks']} MPI ranks" if s.get("mpi_ranks", 1) > 1 else ""
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
           f"{s['wall_s']:.1f} s wall{ranks}")
@@ -170,7 +175,10 @@ def cmd_run(args) -> int:
     from .runner import run_cube
     from .specimen import SpecimenTest
 
-    test = SpecimenTest.from_file(args.file, settings(args.set))
+    overrides = settings(args.set)
+    if args.threads is not None:
+        overrides["threads"] = args.threads
+    test = SpecimenTest.from_file(args.file, overrides)
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
@@ -219,6 +227,8 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
     f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
+    f.add_argument("--threads", type=int, default=None, metavar="T",
+                   help="OpenMP threads, over the file's run.threads (0: OMP_NUM_THREADS if set, else all cores)")
     f.add_argument("--restart", action="store_true",
                    help="continue the run of --out's checkpoint.npz, bit for bit (the same file and --set)")
     _output_options(f)

@@ -150,10 +150,12 @@ def settings(pairs) -> dict:
         name = name.strip().replace("-", "_")
         if not sep or name not in fields:
             raise ValueError(f"--set takes NAME=VALUE with NAME a parameter of ldem cube --help (got '{pair}')")
+        kind = type(fields[name].default)
         try:
-            out[name] = type(fields[name].default)(value)
+            out[name] = kind(value)
         except ValueError:
-            raise ValueError(f"--set {name}: '{value}' is not a {type(fields[name].default).__name__}") from None
+            what = {int: "an integer", float: "a number"}[kind]
+            raise ValueError(f"--set {name}: '{value}' is not {what}") from None
     return out
 
 
