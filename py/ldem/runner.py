@@ -11,7 +11,7 @@ import os
 from typing import Optional, Sequence
 
 from . import io, parallel
-from .cube import CubeResult, CubeTest
+from .cube import CubeResult, CubeTest, refuse_drive_jump
 from .progress import ProgressBar
 
 
@@ -46,6 +46,8 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     if out is not None:
         io.prepare_dir(out)
     sim = simulation if simulation is not None else test.simulation()
+    if sim.steps == 0:
+        refuse_drive_jump(test, sim.dt)  # as test.run would, before any file is opened
     previous, wall_before = [], 0.0
     if restart:
         previous, wall_before = _restore(test, sim, out)
