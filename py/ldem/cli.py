@@ -86,10 +86,6 @@ def _snapshots(args) -> list:
         raise ValueError(f"--snapshots takes comma-separated mean strains (got '{args.snapshots}')") from None
 
 
-# The stops other than separation, as report_run says them.
-_STOPS = {"final_strain": "the final strain", "stopped": "an observer's request"}
-
-
 def report_run(result, args, edge: bool = False) -> int:
     """The lines a run prints (ldem cube, ldem run); exit 1 on an energy error."""
     s, test = result.summary, result.test
@@ -105,19 +101,18 @@ def report_run(result, args, edge: bool = False) -> int:
         print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
               f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J{cut})")
     elif test.stop_at == "separation":
-        end = result.curve["mean_strain"][-1]
-        print(f"stopped at {_STOPS.get(s['stop_reason'], s['stop_reason'])} (mean strain {end:.4e}) before "
-              f"separation: the fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
+        stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
+        print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
+              f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
     ranks = f" on {s['mpi_ranks']} MPI ranks" if s.get("mpi_ranks", 1) > 1 else ""
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
           f"{s['wall_s']:.1f} s wall{ranks}")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
-    if s["quasi_static"]["flagged"]:
+    if (q := s["quasi_static"])["flagged"]:
         print(f"ldem {args.command}: warning: not quasi-static: the kinetic energy at the peak is "
-              f"{s['quasi_static']['kinetic_over_work_at_peak']:.1%} of the external work (above "
-              f"{s['quasi_static']['kinetic_limit']:.0%}): the peak depends on the strain rate; lower it "
-              f"(summary.json: quasi_static)", file=sys.stderr)
+              f"{q['kinetic_over_work_at_peak']:.1%} of the external work (above {q['kinetic_limit']:.0%}): the peak "
+              f"depends on the strain rate; lower it (summary.json: quasi_static)", file=sys.stderr)
     f = args.figure_format
     print(f"wrote {args.out}/: curve.csv summary.json"
           + ("" if args.no_plots else f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
