@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
+import threading
 from typing import Optional, Sequence
 
 from . import io, parallel
@@ -45,7 +47,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
     if out is not None:
         io.prepare_dir(out)
-    sim = simulation if simulation is not None else test.simulation()
+    sim = simulation if simulation is not None else _set_up(test, out)
     if sim.steps == 0:
         refuse_drive_jump(test, sim.dt)  # as test.run would, before any file is opened
     previous, wall_before = [], 0.0
@@ -58,9 +60,11 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         if out is not None and plots else None
     saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters(),
                            checkpoint_seconds, wall_before) if checkpoints else None
-    everyone = [o for o in (csv, bar, series, saver) if o is not None] + list(observers)
+    held = SignalsAtRecords(saver)
+    everyone = [o for o in (csv, bar, series, saver) if o is not None] + list(observers) + [held]
     try:
-        result = test.run(everyone, simulation=sim, previous_rows=previous)
+        with held:
+            result = test.run(everyone, simulation=sim, previous_rows=previous)
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
         if out is not None and partial is not None and root:
@@ -86,7 +90,59 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
             raise
         if root:
             io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
+        if checkpoints:  # the run is finished: no state left that a restart would silently run again
+            with contextlib.suppress(FileNotFoundError):
+                os.remove(os.path.join(out, "checkpoint.npz"))
     return result
+
+
+class SignalsAtRecords:
+    """SIGINT and SIGTERM during the loop, held to the end of the record being
+    observed (the last observer: every other one has seen it, curve.csv has
+    its row), then checkpoint.npz of that record and the signal's own handler
+    (KeyboardInterrupt, or ldem.cli's Terminated). A restart continues from
+    there bit for bit. The C++ loop hands back to Python only at records, so
+    holding costs no delay. Only Python handlers are held (not the defaults,
+    not off the main thread, where signals cannot be handled)."""
+
+    SIGNALS = (signal.SIGINT, signal.SIGTERM)
+
+    def __init__(self, saver=None):
+        self.saver, self.pending, self.previous = saver, None, {}
+
+    def __enter__(self):
+        if threading.current_thread() is threading.main_thread():
+            self.previous = {s: signal.getsignal(s) for s in self.SIGNALS if callable(signal.getsignal(s))}
+            for s in self.previous:
+                signal.signal(s, self._hold)
+        return self
+
+    def _hold(self, signum, frame):
+        self.pending = signum
+
+    def __call__(self, row: dict) -> None:
+        if self.pending is not None:
+            if self.saver is not None:
+                self.saver.write()
+            handler = self.previous.get(self.pending, signal.default_int_handler)
+            self.__exit__()
+            handler(self.pending, None)
+
+    def __exit__(self, *exc):
+        for s, handler in self.previous.items():
+            signal.signal(s, handler)
+        self.previous = {}
+
+
+def _set_up(test: CubeTest, out: Optional[str]):
+    """test.simulation(); a signal meanwhile leaves a summary.json that says so."""
+    try:
+        return test.simulation()
+    except KeyboardInterrupt:
+        if out is not None and parallel.is_root():
+            _summary_after_failure({"status": "interrupted", "stop_reason": "interrupted",
+                                    "error": "interrupted during set-up"}, out)
+        raise
 
 
 def _restore(test: CubeTest, sim, out: str) -> tuple:

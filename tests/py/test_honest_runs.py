@@ -4,7 +4,9 @@ refused or flagged, parameters beyond physical sense refused with the reason,
 threads as OpenMP users expect, messages that name the real problem."""
 import json
 import os
+import signal
 import subprocess
+import time
 
 import pytest
 
@@ -123,3 +125,34 @@ def test_an_unknown_key_is_named_before_a_missing_one(cli, tmp_path):
                                           ("zeta=x", "--set zeta: 'x' is not a number")])
 def test_set_says_what_a_value_is_not(cli, tmp_path, pair, message):
     _one_line_exit_2(cli("run", _small_cube_file(tmp_path), "--set", pair, "--out", str(tmp_path / "o")), message)
+
+
+@pytest.mark.parametrize("signum,code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)], ids=["SIGTERM", "SIGINT"])
+def test_a_killed_run_continues_bit_for_bit(cli, tmp_path, signum, code):
+    """Issue 29, item 1: `ldem cube` killed mid-run checkpoints at its next
+    record (by default, with no option), says how to continue, and --restart
+    ends with the curve.csv of a run never stopped, byte for byte; restarting
+    the finished run runs nothing."""
+    args = ["cube", "--size", "0.08", "--strain-rate", "0.1", "--final-strain", "2e-3", "--threads", "1",
+            "--no-progress", "--no-plots"]
+    whole, cut = tmp_path / "whole", tmp_path / "cut"
+    assert cli(*args, "--out", str(whole)).returncode == 0
+    p = subprocess.Popen(["/usr/bin/python3", LDEM_SCRIPT, *args, "--out", str(cut)], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, env=subprocess_env(),
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # a background shell ignores it
+    rows = lambda: len((cut / "curve.csv").read_text().splitlines()) if (cut / "curve.csv").exists() else 0  # noqa
+    deadline = time.monotonic() + 120
+    while rows() < 30 and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    p.send_signal(signum)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == code, err
+    assert err.strip().endswith(f"continue with: ldem cube --restart {cut}"), err
+    assert json.loads((cut / "summary.json").read_text())["status"] == "interrupted"
+    r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
+    assert r.returncode == 0, r.stderr
+    assert (cut / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
+    assert json.loads((cut / "summary.json").read_text())["status"] == "done"
+    assert not (cut / "checkpoint.npz").exists()
+    r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
+    assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to continue"
