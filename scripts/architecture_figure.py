@@ -14,8 +14,8 @@ from matplotlib.patches import FancyArrowPatch, FancyBboxPatch  # noqa: E402
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 ROLES = ["C++ core (pkg/): lattice, law, random field, integrator, specimen, loop",
-         "specimen and run: returns data", "writers, progress, pictures, reports (from data)",
-         "a run wired to its files", "studies: cases, tables, executors, size effect, damping",
+         "specimen and run: returns data", "writers by name, the central slice, pictures, reports (from data)",
+         "a run given its writers", "studies of any test: cases, executors, cubes, beams, ablation",
          "the edges: command line, scene scripts"]
 
 

@@ -1,12 +1,11 @@
 """The example gallery of README: runs every examples/*.toml (unless its run
-folder is there already) and puts its curve and its crack picture side by side
+folder holds its finished run already: a study's case, ldem.study.Named) and puts its curve and its crack picture side by side
 in doc/gallery/NAME.png.
 
     /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1] [--only NAME ...]
 """
 import argparse
 import glob
-import json
 import os
 
 import matplotlib
@@ -16,6 +15,8 @@ import matplotlib.image  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
 
 import ldem  # noqa: E402
+from ldem import study  # noqa: E402
+from ldem.runner import default_writers  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 
@@ -28,14 +29,12 @@ def main() -> None:
     ap.add_argument("--only", nargs="+", metavar="NAME", help="these examples only (e.g. beam_3pb)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
-    for path in sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml"))):
-        name = os.path.splitext(os.path.basename(path))[0]
-        if args.only and name not in args.only:
-            continue
-        run = os.path.join(args.runs, name)
-        if not _done(run):
-            ldem.run_cube(ldem.SpecimenTest.from_file(path, {"threads": args.threads}), out=run, progress=False)
-        s = json.load(open(os.path.join(run, "summary.json")))
+    examples = {os.path.splitext(os.path.basename(p))[0]: p
+                for p in sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml")))}
+    tests = [study.Named(ldem.SpecimenTest.from_file(path, {"threads": args.threads}), name, default_writers(), "")
+             for name, path in examples.items() if not args.only or name in args.only]
+    for t, s in zip(tests, study.run_cases(tests, args.runs, progress=False, log=lambda line: None)):
+        name, run = t.name, study.case_dir(args.runs, t)
         pictures = [matplotlib.image.imread(os.path.join(run, p)) for p in ("curve.png", "cracks.png")]
         ratios = [p.shape[1] / p.shape[0] for p in pictures]  # side by side at the same height
         fig, axes = plt.subplots(1, 2, figsize=(4.2 * sum(ratios), 4.6), gridspec_kw={"width_ratios": ratios})
@@ -49,13 +48,6 @@ def main() -> None:
         plt.close(fig)
         print(f"{name}: peak {s['peak_stress_MPa']:.4f} MPa at strain {s['strain_at_peak']:.3e}, stop "
               f"{s['stop_reason']}, energy balance error {s['energy_balance_error']:.1e}, {s['wall_s']:.0f} s")
-
-
-def _done(run: str) -> bool:
-    try:
-        return json.load(open(os.path.join(run, "summary.json")))["status"] == "done"
-    except (OSError, ValueError, KeyError):
-        return False
 
 
 if __name__ == "__main__":

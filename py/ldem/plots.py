@@ -13,7 +13,6 @@ import numpy as np  # noqa: E402
 from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
-from . import parallel  # noqa: E402
 from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
 
 STYLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ldem.mplstyle")
@@ -24,7 +23,7 @@ STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
 
 def save(fig, path: str) -> None:
     """Writes fig (whole, or not at all) in the format of path's extension, then frees it."""
-    from .io import atomic
+    from .io.files import atomic
 
     try:
         with atomic(path) as tmp:
@@ -81,26 +80,6 @@ def energy_figure(result, path: str) -> None:
     save(fig, path)
 
 
-def central_slice(sim, axis: int = 1):
-    """Bars whose both ends lie within L0/2 of the mid-plane normal to axis (y by
-    default), projected on the two other axes: (segments, damage states)."""
-    lat = sim.lattice
-    bars = lat.bar_table()
-    n1, n2 = bars["n1"], bars["n2"]
-    x = np.column_stack([lat.x0, lat.y0, lat.z0])
-    mid = 0.5 * (x[:, axis].min() + x[:, axis].max())
-    near = np.abs(x[:, axis] - mid) <= 0.5 * lat.L0 + 1e-12
-    keep = near[n1] & near[n2]
-    mine = parallel.owned(sim)  # split over MPI ranks (a cut normal to z): each rank's own bars, gathered
-    keep[:mine.start] = False
-    keep[mine.stop:] = False
-    plane = [a for a in range(3) if a != axis]
-    seg = np.stack([x[n1[keep]][:, plane], x[n2[keep]][:, plane]], axis=1)
-    if parallel.split(sim):
-        return parallel.gather_arrays([seg, sim.damage_state[keep]])  # None on ranks other than 0
-    return seg, sim.damage_state[keep]
-
-
 def draw_slice(ax, seg, state) -> dict:
     """Draws segments coloured by damage state (broken on top); returns the counts.
     Lines thin out (as 1/sqrt) beyond 12 modules across, so that large cubes stay legible."""
@@ -135,10 +114,3 @@ def crack_figure_from_slice(seg, state, path: str, title: str = "") -> None:
     ax.set_title(title or "central slice", fontsize=9)
     fig.tight_layout()
     save(fig, path)
-
-
-def crack_figure(sim, path: str, title: str = "") -> None:
-    """The central slice's bars by damage state (under MPI: every rank calls it, rank 0 draws)."""
-    piece = central_slice(sim)
-    if piece is not None:
-        crack_figure_from_slice(*piece, path, title)

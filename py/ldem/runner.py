@@ -1,13 +1,12 @@
-"""A run with its files: the wiring of CubeTest.run to the writers, the
-progress bar and the pictures (used by `ldem cube`, the studies and scripts).
+"""A run with its files: test.run given the writers named for it (ldem.io's
+registry: this module knows no file name) and the progress bar (used by
+`ldem cube`, `ldem run`, the studies and scripts).
 
     import ldem
     result = ldem.run_cube(ldem.CubeTest(size=0.24), out="out/t024")
 """
 from __future__ import annotations
 
-import contextlib
-import os
 import signal
 import threading
 from typing import Optional, Sequence
@@ -17,19 +16,31 @@ from .cube import CubeResult, CubeTest, refuse_drive_jump
 from .progress import ProgressBar
 
 
+def default_writers(plots: bool = True, checkpoints: bool = False) -> list:
+    """The writers of `ldem cube` and `ldem run`: the curve and the summary,
+    with plots the pictures and the ParaView files, with checkpoints those."""
+    return ["curve", "summary"] + (["figures", "vtk"] if plots else []) + (["checkpoint"] if checkpoints else [])
+
+
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
              simulation=None, figure_format: str = "png", snapshots: Sequence[float] = (),
              checkpoint_every: int = 0, restart: bool = False, observers: Sequence = (),
-             checkpoint_seconds: float = 0.0) -> CubeResult:
-    """Runs test (an ldem.CubeTest or an ldem.specimen.SpecimenTest); with out, writes curve.csv (row by row), summary.json (also
-    when the run fails or is interrupted: status says so) and, with plots,
-    curve, energies and cracks pictures (figure_format: png, pdf or svg) and
-    the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu at each mean strain of
-    `snapshots`, bars.vtu and crack.vtu at the end, bars.pvd and crack.pvd.
+             checkpoint_seconds: float = 0.0, writers: Optional[Sequence[str]] = None,
+             title: str = "") -> CubeResult:
+    """Runs test (an ldem.CubeTest, an ldem.specimen.SpecimenTest, or any
+    object with their parameters(), simulation() and run()); with out, the
+    writers named in `writers` (ldem.io.writer_names(); default:
+    default_writers(plots, checkpoints)) write their files: curve.csv (row by
+    row), summary.json (also when the run fails or is interrupted: status says
+    so) and, with plots, curve, energies and cracks pictures (figure_format:
+    png, pdf or svg) and the ParaView series: bars_NNNN.vtu and crack_NNNN.vtu
+    at each mean strain of `snapshots`, bars.vtu and crack.vtu at the end,
+    bars.pvd and crack.pvd.
     progress: a bar on stderr (default: when stderr is a terminal).
     checkpoint_every: write out/checkpoint.npz every so many curve rows;
     checkpoint_seconds: every so many seconds of wall time (0: not on that count).
     observers: more callables given each curve row, after the writers.
+    title: the title of the "slice" writer's cracks.png.
     restart: continue the run of out/checkpoint.npz (same parameters), bit for
     bit as if it had never stopped; curve.csv keeps its rows up to the
     checkpoint and gets the rest; summary.json's wall_s counts the run's wall
@@ -41,6 +52,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         raise ValueError(f"checkpoint intervals must be >= 0 rows and >= 0 s (got {checkpoint_every} rows, "
                          f"{checkpoint_seconds} s)")
     checkpoints = bool(checkpoint_every or checkpoint_seconds)
+    names = io.check_writers(default_writers(plots, checkpoints) if writers is None else writers)
     if (restart or checkpoints) and out is None:
         raise ValueError("checkpoints need an output folder")
     if (restart or checkpoints) and parallel.ranks() > 1:
@@ -52,48 +64,48 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         refuse_drive_jump(test, sim.dt)  # as test.run would, before any file is opened
     previous, wall_before = [], 0.0
     if restart:
-        previous, wall_before = _restore(test, sim, out)
+        previous, wall_before = io.restore(test, sim, out)
     root = parallel.is_root()  # under MPI, rank 0 writes the files every rank has (the curve, the summary)
     bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance)
-    csv = io.CurveCsv(os.path.join(out, "curve.csv"), append=restart) if out is not None and root else None
-    series = io.Snapshots(sim, out, [s for s in snapshots if not previous or s > previous[-1]["mean_strain"]]) \
-        if out is not None and plots else None
-    saver = io.Checkpoints(sim, os.path.join(out, "checkpoint.npz"), checkpoint_every, test.parameters(),
-                           checkpoint_seconds, wall_before) if checkpoints else None
-    held = SignalsAtRecords(saver)
-    everyone = [o for o in (csv, bar, series, saver) if o is not None] + list(observers) + [held]
+    run = io.Run(test, sim, out, previous, dict(snapshots=snapshots, figure_format=figure_format, restart=restart,
+                                                checkpoint_every=checkpoint_every, title=title,
+                                                checkpoint_seconds=checkpoint_seconds, wall_before=wall_before))
+    files = io.open_writers(names, run) if out is not None else []
+    held = SignalsAtRecords(next((w for w in files if isinstance(w, io.Checkpoints)), None))
+    everyone = [w for w in files if callable(w)] + [bar] + list(observers) + [held]
     try:
         with held:
             result = test.run(everyone, simulation=sim, previous_rows=previous)
     except BaseException as e:
         partial = getattr(e, "ldem_result", None)
-        if out is not None and partial is not None and root:
-            _summary_after_failure(partial.summary, out)
+        if partial is not None:
+            _tell(files, "failed", partial.summary)
         raise
     finally:
         bar.close()
-        if csv is not None:
-            csv.close()
+        _tell(files, "close")
     if restart:
         result.wall_s += wall_before
         result.summary.update(wall_s=result.wall_s, restarted_at_step=int(previous[-1]["step"]) if previous else 0)
-    if out is not None:
-        try:
-            if plots:
-                write_pictures(result, out, figure_format)
-                series.finish(float(result.curve["mean_strain"][-1]))
-        except BaseException as e:  # the run is done, its outputs are not: the summary says so
-            result.summary.update(status="interrupted" if isinstance(e, KeyboardInterrupt) else "failed",
-                                  error=f"writing the outputs: {e}")
-            if root:
-                _summary_after_failure(result.summary, out)
-            raise
-        if root:
-            io.write_summary(result.summary, os.path.join(out, "summary.json"))  # last: "done" means all is written
-        if checkpoints:  # the run is finished: no state left that a restart would silently run again
-            with contextlib.suppress(FileNotFoundError):
-                os.remove(os.path.join(out, "checkpoint.npz"))
+    try:
+        _tell(files, "finish", result)  # in rank order: the summary last, "done" means all is written
+    except BaseException as e:  # the run is done, its outputs are not: the summary says so
+        result.summary.update(status="interrupted" if isinstance(e, KeyboardInterrupt) else "failed",
+                              error=f"writing the outputs: {e}")
+        _tell(files, "failed", result.summary)
+        raise
     return result
+
+
+def _set_up(test: CubeTest, out: Optional[str]):
+    """test.simulation(); a signal meanwhile leaves a summary.json that says so."""
+    try:
+        return test.simulation()
+    except KeyboardInterrupt:
+        if out is not None:
+            _tell(io.open_writers(["summary"], io.Run(test, None, out)), "failed",
+                  {"status": "interrupted", "stop_reason": "interrupted", "error": "interrupted during set-up"})
+        raise
 
 
 class SignalsAtRecords:
@@ -134,47 +146,9 @@ class SignalsAtRecords:
         self.previous = {}
 
 
-def _set_up(test: CubeTest, out: Optional[str]):
-    """test.simulation(); a signal meanwhile leaves a summary.json that says so."""
-    try:
-        return test.simulation()
-    except KeyboardInterrupt:
-        if out is not None and parallel.is_root():
-            _summary_after_failure({"status": "interrupted", "stop_reason": "interrupted",
-                                    "error": "interrupted during set-up"}, out)
-        raise
-
-
-def _restore(test: CubeTest, sim, out: str) -> tuple:
-    """sim set back to out/checkpoint.npz, curve.csv cut to its rows; returns
-    them and the wall time the run had taken up to the checkpoint."""
-    path = os.path.join(out, "checkpoint.npz")
-    try:
-        state, parameters, wall_s = io.read_checkpoint(path)
-    except OSError as e:
-        raise ValueError(f"cannot restart: {path}: {e.strerror or e}") from None
-    mine = {k: v for k, v in test.parameters().items() if k != "threads"}
-    if {k: v for k, v in parameters.items() if k != "threads"} != mine:
-        raise ValueError(f"cannot restart: {path} is of other parameters")
-    sim.restore(state)
-    return io.cut_curve_after(os.path.join(out, "curve.csv"), int(state["counters"][0])), wall_s
-
-
-def _summary_after_failure(summary: dict, out: str) -> None:
-    """The summary of a run that failed or was interrupted, if the disk takes
-    it; the first error is the one reported."""
-    with contextlib.suppress(OSError):
-        io.write_summary(summary, os.path.join(out, "summary.json"))
-
-
-def write_pictures(result: CubeResult, out: str, fmt: str = "png") -> None:
-    from . import plots
-
-    if fmt not in plots.FIGURE_FORMATS:
-        raise ValueError(f"unknown figure format '{fmt}' (expected one of {', '.join(plots.FIGURE_FORMATS)})")
-    if parallel.is_root():
-        plots.curve_figure(result, os.path.join(out, f"curve.{fmt}"))
-        plots.energy_figure(result, os.path.join(out, f"energies.{fmt}"))
-    plots.crack_figure(result.sim, os.path.join(out, f"cracks.{fmt}"),
-                       title=f"{result.test.describe()}: "
-                             f"mean strain {result.curve['mean_strain'][-1]:.2e}")
+def _tell(writers: Sequence, what: str, *args) -> None:
+    """Calls method `what` of every writer that has one, in their order."""
+    for w in writers:
+        method = getattr(w, what, None)
+        if method is not None:
+            method(*args)

@@ -1,6 +1,7 @@
 """The package's shape (README, Architecture): layers import downwards only,
 no import cycles (module-level or inside functions), no module over 300 lines
-without the reason at its top. Read from the source with ast, nothing imported."""
+without the reason at its top, no runner of cases in scripts/ (studies live
+in ldem.study). Read from the source with ast, nothing imported."""
 import ast
 import os
 
@@ -11,7 +12,8 @@ PACKAGE = os.path.join(ROOT, "py", "ldem")
 LAYERS = [
     {"ldem._core"},
     {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.yade"},  # specimen and run
-    {"ldem.io", "ldem.parallel", "ldem.progress", "ldem.plots", "ldem.report", "ldem.helptext"},  # writers, pictures, reports
+    {"ldem.io", "ldem.slicing", "ldem.parallel", "ldem.progress", "ldem.plots", "ldem.report",  # writers (ldem.io.*),
+     "ldem.helptext"},                                                                     # pictures, reports
     {"ldem.runner"},                                                   # a run wired to its files
     {"ldem.study"},                                                    # ldem.study.* included
     {"ldem.cli", "ldem.rerun", "ldem.bench", "ldem.scene"},                                        # the edges: command line, scene scripts
@@ -147,3 +149,40 @@ def test_no_long_module_without_its_reason():
             long.append(f"{name}: {n} lines")
     assert not long, "modules over 300 lines with no 'Longer than 300 lines: <reason>' in their docstring: " + \
         ", ".join(long)
+
+
+# What a script may not do: run cases side by side or keep case folders (ldem.study does).
+CASE_RUNNER_IMPORTS = {"multiprocessing", "concurrent.futures", "distributed", "dask"}
+CASE_RUNNER_NAMES = {"run_case", "run_cases", "run_all", "case_dir", "finished", "is_finished", "_done"}
+
+
+def _case_runner_parts(path):
+    """The imports and function definitions of a script that make it a case runner."""
+    found = []
+    for node in ast.walk(ast.parse(open(path).read())):
+        if isinstance(node, (ast.Import, ast.ImportFrom)):
+            names = [a.name for a in node.names] if isinstance(node, ast.Import) else [node.module or ""]
+            found += [f"imports {n}" for n in names
+                      if any(n == m or n.startswith(m + ".") for m in CASE_RUNNER_IMPORTS)]
+        elif isinstance(node, ast.FunctionDef) and node.name in CASE_RUNNER_NAMES:
+            found.append(f"defines {node.name}()")
+        elif isinstance(node, ast.Attribute) and node.attr in ("ProcessPoolExecutor", "Pool"):
+            found.append(f"uses {node.attr}")
+    return found
+
+
+def test_no_script_runs_cases_itself():
+    """scripts/ keeps what users copy or run under YADE; a series of runs with
+    folders, resume and processes is a study (ldem.study)."""
+    folder = os.path.join(ROOT, "scripts")
+    wrong = [f"scripts/{f}: {part}" for f in sorted(os.listdir(folder)) if f.endswith(".py")
+             for part in _case_runner_parts(os.path.join(folder, f))]
+    assert not wrong, "case runners in scripts/:\n" + "\n".join(wrong)
+
+
+def test_the_script_check_sees_a_case_runner(tmp_path):
+    script = tmp_path / "runner.py"
+    script.write_text("import multiprocessing\nfrom concurrent.futures import ProcessPoolExecutor\n"
+                      "def finished(case):\n    return True\npool = multiprocessing.Pool(2)\n")
+    assert _case_runner_parts(str(script)) == ["imports multiprocessing", "imports concurrent.futures",
+                                               "defines finished()", "uses Pool"]

@@ -1,33 +1,29 @@
-"""The notched-beam series (issue 13 items 5 and 6): the beams of
-scripts/gregoire2013.py are the paper's geometry, and scripts/beam_size_effect.py
-recovers Bažant's law from points that follow it."""
+"""The notched-beam series (issue 13 items 5 and 6): the beams of the study
+ldem.study.beams (scripts/gregoire2013.py) are the paper's geometry, and its
+tables recover Bažant's law from points that follow it."""
 import numpy as np
 import pytest
 
-from conftest import load_file
-
-
-def script(name: str):
-    return load_file(name, "scripts", name + ".py")
+from ldem.study import beam_report, beam_tables, beams
 
 
 def test_bazant_s_law_is_recovered_from_points_on_it():
-    se = script("beam_size_effect")
+    se = beam_tables
     D = np.repeat([0.05, 0.1, 0.2], 6)
     B, D0 = 1.2, 0.08
     sigma = B * se.FT / 1e6 / np.sqrt(1 + D / D0)
-    fit = se.fit_sel(D, sigma)
+    fit = se.bazant_fit(D, sigma)
     assert fit[0] == pytest.approx(B, rel=1e-9) and fit[2] == pytest.approx(D0, rel=1e-9)
     assert fit[1] < 1e-6 and fit[3] < 1e-9  # no scatter, no interval
     # Scatter widens the intervals and they hold the truth.
     rng = np.random.default_rng(1)
-    B1, dB, D01, dD0 = se.fit_sel(D, sigma * (1 + 0.03 * rng.standard_normal(D.size)))
+    B1, dB, D01, dD0 = se.bazant_fit(D, sigma * (1 + 0.03 * rng.standard_normal(D.size)))
     assert abs(B1 - B) < dB and abs(D01 - D0) < dD0 and dB > 0.01
 
 
 @pytest.mark.parametrize("D, notch", [(0.05, 0.5), (0.1, 0.2), (0.1, 0.0)])
 def test_the_beams_are_the_paper_s(D, notch):
-    g = script("gregoire2013")
+    g = beams
     sim = g.beam(D, notch, 1e-4, 1).simulation()
     x = np.column_stack([sim.lattice.x0, sim.lattice.y0, sim.lattice.z0])
     mass = np.asarray(sim.lattice.mass)
@@ -51,13 +47,10 @@ def test_the_beams_are_the_paper_s(D, notch):
 
 def test_compare_puts_the_prediction_beside_the_measurement(tmp_path):
     """gregoire2013.py compare: predicted / measured for every measured beam."""
-    import argparse
-
-    g = script("gregoire2013")
     (tmp_path / "predictions.csv").write_text("D_mm,notch_ratio,peak_load_kN,cv,seeds,min_kN,max_kN\n"
                                               "50,0.5,1.5,0.02,6,1.4,1.6\n100,0.5,2.5,0.04,6,2.4,2.6\n")
     (tmp_path / "measured.csv").write_text("D_mm,notch_ratio,peak_load_kN,sd_kN\n50,0.5,1.2,0.1\n100,0.5,2.0,\n")
-    g.compare(argparse.Namespace(out=str(tmp_path)))
+    beam_report.compare(str(tmp_path))
     rows = (tmp_path / "comparison.md").read_text().splitlines()[2:]
     assert [r.split("|")[-2].strip() for r in rows] == ["1.250", "1.250"]
     assert "1.20 (0.1)" in rows[0] and "2.00 (-)" in rows[1] and (tmp_path / "comparison.png").stat().st_size > 0

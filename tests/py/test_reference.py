@@ -385,10 +385,23 @@ def test_time_step_above_the_limit_is_refused():
     assert _core.Simulation(2, 2, 2, L0, m, lp, rp).dt == rp.dt
 
 
+def test_eigenvalues_at_round_off_are_zero_and_negative_ones_are_refused():
+    """A zero eigenvalue of K comes out of LAPACK as +-n eps ||K||, its sign
+    depending on the BLAS kernel (OPENBLAS_CORETYPE=Prescott gives -2.7e-5 for
+    the mechanism below, Haswell +1.1e-4, with omega_max^2 = 1.6e12)."""
+    w2 = np.array([-2.7e-5, 1.0, 1.6e12])
+    assert R.psd_eigenvalue(w2[0], w2) == 0.0
+    assert R.psd_eigenvalue(1.1e-4, w2) == 0.0
+    assert R.psd_eigenvalue(1.0, w2) == 1.0
+    with pytest.raises(ValueError, match="negative eigenvalue"):
+        R.psd_eigenvalue(-1.0, w2)
+
+
 def test_one_module_free_top_is_a_mechanism():
     """1 module, upper face free laterally: the upper square can twist about the
-    vertical axis without stretching a bar to first order, so omega_1 = 0 (the
-    reference finds ~1e-8 omega_max). The engine refuses it (no drive can be
+    vertical axis without stretching a bar to first order, so omega_1 = 0 (LAPACK
+    returns omega_1^2 of either sign at round-off, |omega_1^2| ~ 1e-16 omega_max^2,
+    which the reference takes as zero). The engine refuses it (no drive can be
     built on omega_1 = 0: the ramp time is two periods)."""
     lat = R.Lattice(1, 1, 1, L0, R.Material())
     w1, wmax = R.frequencies(lat, R.Boundary(lat))

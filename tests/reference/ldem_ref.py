@@ -308,7 +308,19 @@ def frequencies(lat, bc):
     m = np.repeat(lat.mass, 3)[free]
     s = 1.0 / np.sqrt(m)
     w2 = scipy.linalg.eigh(K * s[:, None] * s[None, :], eigvals_only=True)
-    return math.sqrt(w2[0]), math.sqrt(w2[-1])
+    return math.sqrt(psd_eigenvalue(w2[0], w2)), math.sqrt(w2[-1])
+
+
+def psd_eigenvalue(value, eigenvalues):
+    """An eigenvalue of a positive semi-definite matrix, round-off removed.
+    A backward-stable solver (any correct LAPACK) returns the eigenvalues of
+    K + E with ||E|| <~ n eps ||K||: a zero one (a mechanism) may come out as
+    -1e-12 on one BLAS and +1e-12 on another. Values within that bound are
+    zero; a value below it is a real negative eigenvalue, a bug in K."""
+    bound = len(eigenvalues) * np.finfo(float).eps * max(abs(eigenvalues[0]), abs(eigenvalues[-1]))
+    if value < -bound:
+        raise ValueError(f"negative eigenvalue {value:.3e} of a positive semi-definite matrix (bound {bound:.1e})")
+    return value if value > bound else 0.0
 
 
 # -- section 5: central differences, and the energies ----------------------------------

@@ -1,6 +1,7 @@
-"""Studies: many cube tests (size x seed x load, or one parameter swept), run
-in parallel processes or on a dask.distributed cluster, resumable, aggregated
-into the tables of the reference study (LDEM_SPEC section 6).
+"""Studies: many tests (cubes by size x seed x load or one parameter swept,
+beams, any test object with parameters() and run()), run in parallel
+processes or on a dask.distributed cluster, resumable, aggregated into tables
+(the reference study's: LDEM_SPEC section 6).
 
     ldem study size-effect --out DIR [--sizes 0.12,0.24] [--seeds 6] [--loads uniform,triangular] [--jobs J]
     ldem study damping     --out DIR [--size 0.96] [--zetas 0.02,2]
@@ -8,7 +9,7 @@ into the tables of the reference study (LDEM_SPEC section 6).
     ldem study refinement  --out DIR [--sizes 0.12,0.24] [--L0s 0.02,0.01] [--corr-lengths 0,0.02]
 
 Modules, each importing only those listed before it:
-  cases        case names and folders, what is finished, one case run into its folder
+  cases        case names and folders, what is finished, one case (any test object) run into its folder
   tables       one row per case, aggregation per (load, size), the fractal fit
   executors    running the unfinished cases: in turn, in processes, on dask
   size_effect  the size-effect study: runs, tables, fractal.json, report
@@ -17,11 +18,15 @@ Modules, each importing only those listed before it:
   mesh_tables  its tables beside the fine lattice, and the verdict
   mesh_report  its figures and report.md
   refinement   the same cubes with finer modules
+  ablation     one factor at a time on a cube, stopped past the peak (scripts/peak_ablation.py)
+  beams        the Gregoire et al. (2013) beams: specimens, calibration, runs, predictions.csv
+  beam_tables  their size effect (Bazant's law fitted per notch) and curve tables
+  beam_report  their figures and the comparison with the measurements (scripts/gregoire2013.py)
   command      the `ldem study` command line
 """
 from ..io import read_table as read_csv, write_table as write_csv  # noqa: F401
-from .cases import (case_dir, case_name, damping_tests, is_finished, load_case, load_curve, load_curves,  # noqa: F401
-                    load_summary, run_case, size_effect_tests)
+from .cases import (Named, case_dir, case_name, damping_tests, is_finished, load_case, load_curve,  # noqa: F401
+                    load_curves, load_summary, run_case, size_effect_tests)
 from .executors import run_cases  # noqa: F401
 from .size_effect import STUDY_SIZES, run_size_effect  # noqa: F401
 from .damping import run_damping  # noqa: F401

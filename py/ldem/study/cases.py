@@ -1,16 +1,25 @@
 """The cases of a study and their folders: naming, what counts as finished,
 running one case into its folder, and reading its files back.
 
+A case is any test object with parameters() and run() (and simulation(),
+final_strain, energy_tolerance, describe()): ldem.CubeTest, ldem.SpecimenTest,
+or a study's own (ldem.study.beams.Beam). It may also say
+    case_name()    its folder's name (default: the cube's load_size_seed...,
+                   or for any other test its seed and a hash of its parameters)
+    cases_folder   the folder of the case folders (default "cases")
+    writers        the writers of its run (default CASE_WRITERS)
+
 Layout of a study folder DIR: one folder per case, DIR/cases/<name>/
 (curve.csv, summary.json, cracks.png, slice.npz). A case is finished when its
-summary.json says "done" for the same parameters and slice.npz (written last)
-exists. An unfinished case with a checkpoint.npz of its parameters (a case
+summary.json (written last) says "done" for the same parameters and the files
+of its writers are whole. An unfinished case with a checkpoint.npz of its parameters (a case
 writes one every CHECKPOINT_SECONDS) continues from it; any other case folder
 (failed, other parameters) is computed again from scratch."""
 from __future__ import annotations
 
-import contextlib
 import dataclasses
+import hashlib
+import json
 import os
 import shutil
 from typing import Dict, Iterable, List, Optional, Sequence
@@ -28,9 +37,16 @@ def _number(v) -> str:
     return short if float(short) == v else repr(v)
 
 
-def case_name(test: CubeTest) -> str:
-    """load_size_seed, then every parameter that differs from CubeTest's defaults
-    (threads aside: they do not change the result)."""
+def case_name(test) -> str:
+    """test.case_name() if it has one; for a CubeTest load_size_seed, then every
+    parameter that differs from CubeTest's defaults (threads aside: they do not
+    change the result); for any other test, its seed and a hash of its
+    parameters."""
+    if hasattr(test, "case_name"):
+        return test.case_name()
+    if not isinstance(test, CubeTest):
+        key = json.dumps(_comparable(test.parameters(), test), sort_keys=True)
+        return f"s{test.seed}_{hashlib.sha256(key.encode()).hexdigest()[:12]}"
     name = f"{test.load}_{_number(test.size)}m_s{test.seed}"
     default = CubeTest()
     for f in dataclasses.fields(CubeTest):
@@ -42,16 +58,58 @@ def case_name(test: CubeTest) -> str:
     return name
 
 
-def case_dir(out: str, test: CubeTest) -> str:
+def case_dir(out: str, test) -> str:
     """Where a study in directory out keeps the case of test."""
-    return os.path.join(out, "cases", case_name(test))
+    return os.path.join(out, getattr(test, "cases_folder", "cases"), case_name(test))
 
 
-def _comparable(params: dict) -> dict:
-    """The parameters that decide a case's result; one declared after the case
-    ran counts at its default (the run it would have made is the same)."""
-    defaults = {f.name: f.default for f in dataclasses.fields(CubeTest)}
-    return {k: params.get(k, d) for k, d in defaults.items() if k != "threads"}
+# The files of a study case: its curve, its summary, its central slice.
+CASE_WRITERS = ("curve", "summary", "slice")
+
+
+def case_writers(test) -> list:
+    return list(getattr(test, "writers", CASE_WRITERS))
+
+
+def case_title(test) -> str:
+    """The title of the case's crack picture."""
+    return f"{test.size:g} m, {test.load}, seed {test.seed}" if isinstance(test, CubeTest) else test.describe()
+
+
+class Named:
+    """Any test as a case of a name, folder and writers of its own (e.g. the
+    gallery's examples: runs/NAME/ with the pictures of `ldem run`)."""
+
+    def __init__(self, test, name: str, writers: Sequence[str] = CASE_WRITERS, folder: str = "cases"):
+        self.test, self.name, self.writers, self.cases_folder = test, name, list(writers), folder
+        self.final_strain, self.energy_tolerance = test.final_strain, test.energy_tolerance
+
+    def case_name(self) -> str:
+        return self.name
+
+    def describe(self) -> str:
+        return self.test.describe()
+
+    def parameters(self) -> dict:
+        return self.test.parameters()
+
+    def simulation(self):
+        return self.test.simulation()
+
+    def run(self, observers=(), simulation=None, previous_rows=()):
+        return self.test.run(observers, simulation, previous_rows)
+
+
+def _comparable(params: dict, test) -> dict:
+    """The parameters that decide a case's result (threads, at any depth, do
+    not); for a CubeTest one declared after the case ran counts at its default
+    (the run it would have made is the same)."""
+    if isinstance(test, CubeTest):
+        defaults = {f.name: f.default for f in dataclasses.fields(CubeTest)}
+        return {k: params.get(k, d) for k, d in defaults.items() if k != "threads"}
+    if isinstance(params, dict):
+        return {k: _comparable(v, test) for k, v in params.items() if k != "threads"}
+    return params
 
 
 def _last_step(path: str) -> int:
@@ -69,10 +127,11 @@ def _last_step(path: str) -> int:
         return -1
 
 
-def unfinished_reason(case_dir: str, test: CubeTest) -> Optional[str]:
+def unfinished_reason(case_dir: str, test) -> Optional[str]:
     """None if the case in case_dir is finished for test: summary.json says done
     for the same parameters, curve.csv ends with the summary's last step and
-    slice.npz loads; else why not (the case is then run again)."""
+    slice.npz (if the case writes one) loads; else why not (the case is then
+    run again)."""
     if not os.path.isdir(case_dir):
         return "not run yet"
     try:
@@ -81,7 +140,7 @@ def unfinished_reason(case_dir: str, test: CubeTest) -> Optional[str]:
         return "no readable summary.json"
     if s.get("status") != "done":
         return f"status {s.get('status')!r}"
-    if _comparable(s.get("parameters", {})) != _comparable(test.parameters()):
+    if _comparable(s.get("parameters", {}), test) != _comparable(json_copy(test.parameters()), test):
         return "other parameters"
     try:
         last = _last_step(os.path.join(case_dir, "curve.csv"))
@@ -89,14 +148,20 @@ def unfinished_reason(case_dir: str, test: CubeTest) -> Optional[str]:
         return "no curve.csv"
     if last != s.get("steps"):
         return f"curve.csv incomplete (last row at step {last}, summary.json says {s.get('steps')})"
-    try:
-        io.read_slice(os.path.join(case_dir, "slice.npz"))
-    except (OSError, ValueError, KeyError, EOFError):
-        return "no loadable slice.npz"
+    if "slice" in case_writers(test):
+        try:
+            io.read_slice(os.path.join(case_dir, "slice.npz"))
+        except (OSError, ValueError, KeyError, EOFError):
+            return "no loadable slice.npz"
     return None
 
 
-def is_finished(case_dir: str, test: CubeTest) -> bool:
+def json_copy(params: dict) -> dict:
+    """params as summary.json gives them back (tuples as lists)."""
+    return json.loads(json.dumps(params))
+
+
+def is_finished(case_dir: str, test) -> bool:
     return unfinished_reason(case_dir, test) is None
 
 
@@ -105,40 +170,32 @@ def is_finished(case_dir: str, test: CubeTest) -> bool:
 CHECKPOINT_SECONDS = 600.0
 
 
-def checkpoint_step(case_dir: str, test: CubeTest) -> Optional[int]:
+def checkpoint_step(case_dir: str, test) -> Optional[int]:
     """The step of the unfinished case's checkpoint.npz, if it has a readable one
     of test's parameters (threads aside) and a curve.csv; else None."""
     try:
-        state, parameters, _ = io.read_checkpoint(os.path.join(case_dir, "checkpoint.npz"))
+        state, parameters, _ = io.case_checkpoint(case_dir)
     except (OSError, ValueError, KeyError, EOFError):
         return None
-    if _comparable(parameters) != _comparable(test.parameters()) or \
+    if _comparable(parameters, test) != _comparable(json_copy(test.parameters()), test) or \
             not os.path.exists(os.path.join(case_dir, "curve.csv")):
         return None
     return int(state["counters"][0])
 
 
-def run_case(params: dict, case_dir: str) -> dict:
-    """Runs one case into case_dir and returns its summary: from the case's
-    checkpoint if it has one (bit for bit the run it would have been), else
-    from scratch in the emptied folder. A top-level function, so that worker
-    processes and dask can call it."""
-    from .. import plots  # matplotlib only where pictures are drawn: `ldem cube` starts faster
+def run_case(test, case_dir: str) -> dict:
+    """Runs one case (a test object) into case_dir with its writers and returns
+    its summary: from the case's checkpoint if it has one (bit for bit the run
+    it would have been), else from scratch in the emptied folder. A top-level
+    function, so that worker processes and dask can call it."""
     from ..runner import run_cube
 
-    test = CubeTest(**params)
     restart = checkpoint_step(case_dir, test) is not None
     if os.path.isdir(case_dir) and not restart:
         shutil.rmtree(case_dir)  # half-finished or stale: start afresh
-    result = run_cube(test, out=case_dir, progress=False, plots=False, restart=restart,
-                      checkpoint_seconds=CHECKPOINT_SECONDS)
-    with contextlib.suppress(FileNotFoundError):
-        os.remove(os.path.join(case_dir, "checkpoint.npz"))  # the case is done: the state is not needed
-    seg, state = plots.central_slice(result.sim)
-    # Written last: its presence marks the case finished (with summary.json "done").
-    io.write_slice(os.path.join(case_dir, "slice.npz"), seg, state)
-    plots.crack_figure_from_slice(seg, state, os.path.join(case_dir, "cracks.png"),
-                                  title=f"{test.size:g} m, {test.load}, seed {test.seed}")
+    result = run_cube(test, out=case_dir, progress=False, restart=restart, checkpoint_seconds=CHECKPOINT_SECONDS,
+                      writers=case_writers(test) + ["checkpoint"], title=case_title(test))
+    io.discard_checkpoint(case_dir)  # the case is done: the state is not needed
     return result.summary
 
 

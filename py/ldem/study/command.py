@@ -1,4 +1,4 @@
-"""`ldem study size-effect`, `damping`, `mesh` and `refinement`: options,
+"""`ldem study size-effect`, `damping`, `mesh`, `refinement` and `beams`: options,
 input checks, the printed summary."""
 from __future__ import annotations
 
@@ -9,6 +9,9 @@ from typing import List, Sequence
 
 from ..helptext import HelpFormatter, add_output_flags
 from ..cube import CubeTest, settings
+from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
+from .beam_tables import write_curve_tables, write_size_effect
+from .beams import run_beams, series_tests, uniform_tests, write_predictions
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
@@ -166,6 +169,22 @@ def cmd_refinement(args) -> int:
     return 0
 
 
+def cmd_beams(args) -> int:
+    """The Gregoire et al. (2013) beams (ldem.study.beams): the unfinished cases,
+    then predictions.csv, the curve tables and the size effect."""
+    if not (args.eps_p > 0):
+        raise ValueError(f"--eps-p must be positive (got {args.eps_p}; scripts/gregoire2013.py calibrate finds it)")
+    tests = uniform_tests(args.eps_p) if args.uniform else series_tests(args.eps_p, _seeds(args))
+    run_beams(tests, args.out, args.jobs)
+    write_predictions(args.out, args.seeds)
+    curves_figure(args.out, write_curve_tables(args.out, args.seeds))
+    found = write_size_effect(args.out)
+    if found is not None:
+        size_effect_figure(args.out, *found[1:])
+        cracks_mosaic(args.out)
+    return 0
+
+
 def add_parser(sub) -> None:
     p = sub.add_parser("study", help="the size-effect and damping studies of the reference paper",
                        description="Runs many cube tests (resumable, in parallel) and aggregates them.")
@@ -238,3 +257,12 @@ def add_parser(sub) -> None:
     r.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
     r.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
     r.set_defaults(func=cmd_refinement)
+
+    b = kinds.add_parser("beams", help="the notched beams of Gregoire et al. (2013): runs, predictions, size effect",
+                         formatter_class=HelpFormatter)
+    b.add_argument("--out", required=True, metavar="DIR", help="study folder (cases/, tables, figures)")
+    b.add_argument("--eps-p", dest="eps_p", type=float, required=True, help="eps_p of the calibration [-]")
+    b.add_argument("--seeds", type=int, default=6, help="random specimens per beam (seeds 1..N)")
+    b.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once, one thread each")
+    b.add_argument("--uniform", action="store_true", help="the beams with a uniform G_f (cases_cv0/) instead")
+    b.set_defaults(func=cmd_beams)

@@ -8,7 +8,6 @@ import socket
 from typing import Callable, List, Optional, Sequence
 
 from .. import io
-from ..cube import CubeTest
 from ..progress import CaseProgress
 from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
 
@@ -60,9 +59,9 @@ def _alive(pid: int) -> bool:
     return pid > 0
 
 
-def run_cases(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
+def run_cases(tests: Sequence, out: str, jobs: int = 1, scheduler: Optional[str] = None,
               progress: Optional[bool] = None, log: Callable[[str], None] = print) -> List[dict]:
-    """Runs every test not finished yet (in `jobs` processes, or on the dask
+    """Runs every test (any case of ldem.study.cases) not finished yet (in `jobs` processes, or on the dask
     cluster at `scheduler`) and returns the summaries of all, in order. The
     folder is locked meanwhile (study_lock)."""
     if jobs < 1:
@@ -88,7 +87,7 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
         elif reasons[i] != "not run yet":
             log(f"  {case_name(tests[i])}: {reasons[i]}: running it again")
     bar = CaseProgress(len(tests), len(tests) - len(todo), progress)
-    args = [(tests[i].parameters(), dirs[i]) for i in todo]
+    args = [(tests[i], dirs[i]) for i in todo]
 
     def finished(i, summary):
         bar.step()
@@ -100,8 +99,8 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
         if scheduler:
             _run_on_dask(scheduler, todo, args, finished)
         elif jobs == 1 or len(todo) <= 1:
-            for i, (p, d) in zip(todo, args):
-                finished(i, run_case(p, d))
+            for i, (t, d) in zip(todo, args):
+                finished(i, run_case(t, d))
         else:
             _run_in_processes(jobs, todo, args, finished)
     finally:
@@ -115,7 +114,7 @@ def _run_in_processes(jobs, todo, args, finished):
 
     # spawn, not fork: a forked OpenMP runtime can hang in the child.
     with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(run_case, p, d): i for i, (p, d) in zip(todo, args)}
+        futures = {pool.submit(run_case, t, d): i for i, (t, d) in zip(todo, args)}
         try:
             for fut in cf.as_completed(futures):
                 finished(futures[fut], fut.result())
@@ -129,7 +128,7 @@ def _run_on_dask(address, todo, args, finished):
     from distributed import Client, as_completed
 
     with Client(address) as client:
-        futures = [client.submit(run_case, p, d, pure=False) for p, d in args]
+        futures = [client.submit(run_case, t, d, pure=False) for t, d in args]
         index = {f.key: i for f, i in zip(futures, todo)}
         for fut in as_completed(futures):
             finished(index[fut.key], fut.result())

@@ -1,0 +1,21 @@
+"""The files of runs and studies, and the registry of writers by name.
+
+    files        the output folder, whole-or-absent files (atomic), text
+    registry     register_writer / open_writers: a run is given writer names
+    tables       curve.csv ("curve"), summary.json ("summary"), study tables
+    vtk          bars.vtu, crack.vtu, their series and .pvd/.pvtu ("vtk")
+    checkpoints  checkpoint.npz ("checkpoint"), restarts
+    figures      curve/energies/cracks pictures ("figures"), slice.npz ("slice")
+
+A new writer is a module here that ends with register_writer(name, ...) and
+is imported below; no runner changes. Writers take data; nothing here
+computes physics."""
+from .files import atomic, prepare_dir, write_text  # noqa: F401
+from .registry import Run, check_writers, describe_writers, open_writers, register_writer, writer_names  # noqa: F401
+from .tables import (CurveCsv, cut_curve_after, read_curve, read_summary, read_table, write_summary,  # noqa: F401
+                     write_table)
+from .vtk import (VTU_CELL_ARRAYS, VTU_POINT_ARRAYS, Snapshots, write_bars, write_pvd, write_pvtu,  # noqa: F401
+                  write_vtu)
+from .checkpoints import (Checkpoints, case_checkpoint, discard_checkpoint, read_checkpoint, restore,  # noqa: F401
+                          write_checkpoint)
+from .figures import read_slice, write_slice  # noqa: F401

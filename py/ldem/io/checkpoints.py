@@ -1,0 +1,97 @@
+"""checkpoint.npz: writing it as a run goes, and setting a run back to it.
+Registers the writer "checkpoint"."""
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import time
+
+import numpy as np
+
+from .files import atomic
+from .registry import register_writer
+from .tables import CURVE, cut_curve_after
+
+CHECKPOINT = "checkpoint.npz"
+
+
+def write_checkpoint(path: str, state: dict, parameters: dict, wall_s: float = 0.0) -> None:
+    """checkpoint.npz: the arrays of Simulation.checkpoint() (nodes: u_*, v_*,
+    f_* by component; bars: kappa, eps_r; rows: softening; the run's scalars,
+    counters, events and load-loss window), the test's parameters as JSON and
+    the wall time the run had taken. npz, not HDF5: numpy reads it with
+    nothing else installed, and it holds named arrays, which is all a
+    checkpoint is."""
+    with atomic(path) as tmp:
+        np.savez(tmp, parameters=np.array(json.dumps(parameters)), wall_s=np.array(wall_s), **state)
+
+
+def read_checkpoint(path: str) -> tuple:
+    """(state for Simulation.restore, parameters, wall time the run had taken [s])."""
+    with np.load(path) as z:
+        state = {k: z[k] for k in z.files if k not in ("parameters", "wall_s")}
+        return state, json.loads(str(z["parameters"])), float(z["wall_s"]) if "wall_s" in z.files else 0.0
+
+
+def case_checkpoint(out: str) -> tuple:
+    """read_checkpoint of the run in folder out."""
+    return read_checkpoint(os.path.join(out, CHECKPOINT))
+
+
+def discard_checkpoint(out: str) -> None:
+    """The run in out is done: its state is not needed any more."""
+    with contextlib.suppress(FileNotFoundError):
+        os.remove(os.path.join(out, CHECKPOINT))
+
+
+def restore(test, sim, out: str) -> tuple:
+    """sim set back to out's checkpoint.npz, curve.csv cut to its rows; returns
+    them and the wall time the run had taken up to the checkpoint."""
+    path = os.path.join(out, CHECKPOINT)
+    try:
+        state, parameters, wall_s = read_checkpoint(path)
+    except OSError as e:
+        raise ValueError(f"cannot restart: {path}: {e.strerror or e}") from None
+    mine = {k: v for k, v in test.parameters().items() if k != "threads"}
+    if {k: v for k, v in parameters.items() if k != "threads"} != mine:
+        raise ValueError(f"cannot restart: {path} is of other parameters")
+    sim.restore(state)
+    return cut_curve_after(os.path.join(out, CURVE), int(state["counters"][0])), wall_s
+
+
+class Checkpoints:
+    """An observer of CubeTest.run: checkpoint.npz every `every` curve rows
+    and/or every `seconds` of wall time (0: not on that count); wall_before:
+    the wall time of the run before this piece of it (a restart)."""
+
+    def __init__(self, sim, path: str, every: int, parameters: dict, seconds: float = 0.0, wall_before: float = 0.0):
+        self.sim, self.path, self.every, self.parameters, self.seconds = sim, path, every, parameters, seconds
+        self.rows, self.wall_before = 0, wall_before
+        self.start = self.last = time.monotonic()
+
+    def __call__(self, row: dict) -> None:
+        self.rows += 1
+        now = time.monotonic()
+        if (self.every and self.rows % self.every == 0) or (self.seconds and now - self.last >= self.seconds):
+            self.write()
+
+    def write(self) -> None:
+        """checkpoint.npz of the record being observed (also at a SIGTERM or SIGINT: ldem.runner)."""
+        self.last = now = time.monotonic()
+        write_checkpoint(self.path, self.sim.checkpoint(), self.parameters, self.wall_before + now - self.start)
+
+    def finish(self, result) -> None:
+        """The run is finished: no state left that --restart would silently run again."""
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(self.path)
+
+
+def _checkpoint_writer(run) -> Checkpoints:
+    o = run.options
+    return Checkpoints(run.sim, os.path.join(run.out, CHECKPOINT), o.get("checkpoint_every", 0),
+                       run.test.parameters(), o.get("checkpoint_seconds", 0.0), o.get("wall_before", 0.0))
+
+
+register_writer("checkpoint", _checkpoint_writer, 30,
+                "checkpoint.npz every checkpoint_every rows and/or checkpoint_seconds of wall time")

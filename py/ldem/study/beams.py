@@ -1,0 +1,170 @@
+"""The beam series of Grégoire, Rojas-Solano and Pijaudier-Cabot (2013),
+"Failure and size effect for notched and unnotched concrete beams", as a
+study (scripts/gregoire2013.py calls it; its docstring has the why of each
+choice): geometrically similar beams in three-point bending, depth D = 50,
+100 and 200 mm, span 2.5 D, length 3.5 D, thickness 50 mm, notches 0, D/5
+and D/2, six random specimens each, the material taken from the paper's
+concrete (E = 37 GPa, nu = 0.21, f_t = 3.9 MPa, f_c = 42.3 MPa) and G_f from
+fib Model Code 2010, eps_p calibrated on a direct tension prism.
+
+Cases: OUT/cases/D{mm}_n{notch}_s{seed}/ (random G_f), OUT/cases_cv0/ (uniform
+G_f); tables: predictions.csv here, the size effect in beam_tables."""
+from __future__ import annotations
+
+import math
+import os
+import statistics
+from typing import Callable, List, Sequence
+
+from .. import io
+from ..specimen import SpecimenTest
+from .cases import Named
+from .executors import run_cases
+
+E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
+GF = 73 * (FC / 1e6) ** 0.18  # fib MC2010 eq. 5.1-9 [N/m]
+L0 = 0.005
+B = 0.05  # thickness [m]
+MATERIAL = {"E": E, "nu": NU, "Gf_mean": GF}
+DEPTHS, NOTCHES = (0.05, 0.1, 0.2), (0.0, 0.2, 0.5)
+PREDICTION_COLUMNS = ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN"]
+
+
+def prism(eps_p: float, seed: int) -> SpecimenTest:
+    """The direct tension prism 50 x 50 x 100 mm of the calibration of eps_p."""
+    return SpecimenTest({
+        "title": f"direct tension prism 50 x 50 x 100 mm, eps_p {eps_p:.4g}",
+        "shape": {"kind": "box", "L0": L0, "size": [0.05, 0.05, 0.10]},
+        "groups": {"bottom": {"face": "z-", "fix": ["x", "y", "z"]}, "top": {"face": "z+", "drive": {"z": 1.0}}},
+        "measure": {"support": "bottom", "loaded": "top", "area": 0.0025, "gauge_length": 0.10},
+        "material": dict(MATERIAL, eps_p=eps_p), "loading": {"strain_rate": 0.05},
+        "run": {"seed": seed, "stop_at": "load_loss", "final_strain": 3e-3, "threads": 1}})
+
+
+def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0) -> SpecimenTest:
+    """Span 2.5 D centred on a length 3.5 D: supports at 0.5 D and 3 D. The
+    notch (one module wide) and the platen (a module wide) are on the module at
+    mid-span, or just right of it when mid-span is a node line (D = 100, 200 mm:
+    2.5 mm off, 1 to 2 % of the span)."""
+    length = 3.5 * D
+    mid = (math.floor(1.75 * D / L0 + 1e-9) + 0.5) * L0
+    shape = {"kind": "box", "L0": L0, "size": [length, B, D]}
+    if notch > 0:
+        shape["notch"] = {"depth": notch * D, "width": L0, "at": mid}
+    return SpecimenTest({
+        "title": f"Gregoire 2013 beam D = {D * 1e3:g} mm, notch {notch:g} D",
+        "shape": shape,
+        "groups": {"left": {"face": "z-", "plane": {"x": 0.5 * D}, "fix": ["x", "y", "z"]},
+                   "right": {"face": "z-", "plane": {"x": 3.0 * D}, "fix": ["z"]},
+                   "supports": {"union": ["left", "right"]},
+                   "load": {"box": {"min": [mid - 0.5 * L0, 0.0, D], "max": [mid + 0.5 * L0, B, D]},
+                            "drive": {"z": -1.0}}},
+        "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [N]
+                    "probes": {"cmod": {"a": [mid - 0.5 * L0, 0.0, 0.0], "b": [mid + 0.5 * L0, 0.0, 0.0],
+                                        "direction": "x"}}},
+        "material": dict(MATERIAL, eps_p=eps_p, Gf_cv=gf_cv), "loading": {"strain_rate": 0.1},
+        "run": {"seed": seed, "final_strain": 3e-3, "threads": 1}})
+
+
+class PastThePeak:
+    """An observer that stops a beam's run once it is well past its peak: the
+    deflection twice that at the peak and the load below half the peak. (The
+    load-loss test at a fraction of 0.5 would fire on the rising branch: its
+    average over two fundamental periods is below half the current load early on.)
+    rows: those recorded before a restart."""
+
+    def __init__(self, rows=()):
+        self.peak, self.at = 0.0, 0.0
+        for row in rows:
+            self(row)
+
+    def __call__(self, row) -> bool:
+        if row["stress_MPa"] > self.peak:
+            self.peak, self.at = row["stress_MPa"], row["mean_strain"]
+        return not (row["mean_strain"] > 2 * self.at and row["stress_MPa"] < 0.5 * self.peak)
+
+
+def beam_case(out: str, D: float, notch: float, seed: int, gf_cv: float = 1.0) -> str:
+    """The folder of a beam's case in study folder out."""
+    return os.path.join(out, "cases" if gf_cv == 1.0 else f"cases_cv{gf_cv:g}", f"D{D * 1e3:g}_n{notch:g}_s{seed}")
+
+
+class Beam(Named):
+    """One beam of the series as a study case: the SpecimenTest of beam(), run
+    until PastThePeak; its folder D{mm}_n{notch}_s{seed} in cases/ (random G_f)
+    or cases_cv{CV}/; seed 1 also writes the pictures and ParaView files."""
+
+    def __init__(self, D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0):
+        self.D, self.notch, self.eps_p, self.seed, self.gf_cv = D, notch, eps_p, seed, gf_cv
+        folder, name = os.path.split(beam_case("", D, notch, seed, gf_cv))
+        super().__init__(beam(D, notch, eps_p, seed, gf_cv), name,
+                         ["curve", "summary"] + (["figures", "vtk"] if seed == 1 else []), folder)
+
+    def run(self, observers=(), simulation=None, previous_rows=()):
+        return self.test.run(list(observers) + [PastThePeak(previous_rows)], simulation, previous_rows)
+
+
+def calibrate(log: Callable[[str], None] = print) -> float:
+    """eps_p such that the prisms' (seeds 1-3) mean strength is f_t: one
+    scaling from f_t / E, then checked. Returns it."""
+    eps = FT / E
+    for it in range(2):
+        peaks = [prism(eps, s).run().summary["peak_stress_MPa"] * 1e6 for s in (1, 2, 3)]
+        mean = statistics.mean(peaks)
+        log(f"eps_p {eps:.6g}: strengths {', '.join(f'{p / 1e6:.4f}' for p in peaks)} MPa, mean "
+            f"{mean / 1e6:.4f} MPa ({mean / FT - 1:+.2%} of f_t)")
+        if it == 0:
+            eps *= FT / mean
+    log(f"eps_p = {eps:.6g}")
+    return eps
+
+
+def series_tests(eps_p: float, seeds: int) -> List[Beam]:
+    """Every beam with random G_f, seed by seed: a series cut short has as many
+    specimens of every beam."""
+    return [Beam(D, n, eps_p, s) for s in range(1, seeds + 1) for D in DEPTHS for n in NOTCHES]
+
+
+def uniform_tests(eps_p: float) -> List[Beam]:
+    """The beams with a uniform G_f (CV 0, one specimen each: the field is the
+    only randomness): D = 50 and 100 mm with every notch, then D = 200 mm (8
+    minutes a run on one thread) with the notches 0.5 and 0.2: enough for
+    Bažant's law at those notches and the unnotched slope from 50 to 100 mm."""
+    beams = [(D, n) for D in DEPTHS[:2] for n in NOTCHES] + [(0.2, 0.5), (0.2, 0.2)]
+    return [Beam(D, n, eps_p, 1, 0.0) for D, n in beams]
+
+
+def run_beams(tests: Sequence[Beam], out: str, jobs: int = 1, log: Callable[[str], None] = print) -> List[dict]:
+    """The unfinished cases, `jobs` at a time (one thread each); their summaries."""
+    return run_cases(tests, out, jobs=jobs, log=log)
+
+
+def finished_peaks(out: str, D: float, notch: float, seeds: int, gf_cv: float = 1.0) -> List[float]:
+    """The peak loads [kN] of the beam's finished cases (the force of area 1 [MN] -> kN)."""
+    peaks = []
+    for seed in range(1, seeds + 1):
+        path = os.path.join(beam_case(out, D, notch, seed, gf_cv), io.tables.SUMMARY)
+        if os.path.exists(path):
+            s = io.read_summary(path)
+            if s.get("status") == "done":
+                peaks.append(s["peak_stress_MPa"] * 1e3)
+    return peaks
+
+
+def write_predictions(out: str, seeds: int, log: Callable[[str], None] = print) -> List[dict]:
+    """predictions.csv: per beam, the mean peak load [kN], CV, min and max over
+    its finished specimens."""
+    rows = []
+    for D in DEPTHS:
+        for notch in NOTCHES:
+            loads = finished_peaks(out, D, notch, seeds)
+            if not loads:
+                log(f"D {D * 1e3:g} mm, notch {notch:g}: no specimen finished")
+                continue
+            rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
+                         "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
+                         "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
+    io.write_table(os.path.join(out, "predictions.csv"), rows, PREDICTION_COLUMNS)
+    for r in rows:
+        log(f"{r['D_mm']:g} mm, notch {r['notch_ratio']:g}: {r['peak_load_kN']:.3f} kN (CV {r['cv']:.3f})")
+    return rows
