@@ -28,7 +28,7 @@ The material, and why:
     /usr/bin/python3 scripts/gregoire2013.py predict --eps-p E --out results/beams/gregoire2013 [--seeds 6] [--jobs 2]
     /usr/bin/python3 scripts/gregoire2013.py uniform --eps-p E [--jobs 2]  # G_f CV 0: cases_cv0/
     /usr/bin/python3 scripts/gregoire2013.py curves [--out ...]      # curves/*.csv, curves.png
-    /usr/bin/python3 scripts/gregoire2013.py compare [--out ...]     # against measured.csv, after the predictions
+    /usr/bin/python3 scripts/gregoire2013.py compare [--out ...] [--data DIR]  # comparison.md|png (beam_comparison)
     /usr/bin/python3 scripts/gregoire2013.py size-effect [--out ...] # size_effect.md|csv|png, cracks.png
 
 The beams, their runs and tables are the study ldem.study.beams (cases in
@@ -39,7 +39,7 @@ import argparse
 import os
 import sys
 
-from ldem.study import beam_report, beam_tables, beams
+from ldem.study import beam_comparison, beam_report, beam_tables, beams
 
 OUT = os.path.join("results", "beams", "gregoire2013")
 
@@ -50,6 +50,13 @@ def predict(args) -> None:
     if args.jobs > 0:
         beams.run_beams(beams.series_tests(args.eps_p, args.seeds), args.out, args.jobs)
     beams.write_predictions(args.out, args.seeds)
+
+
+def compare(args) -> None:
+    try:
+        beam_comparison.compare(args.out, args.data)
+    except FileNotFoundError as e:
+        sys.exit(str(e))
 
 
 def size_effect(args) -> None:
@@ -77,6 +84,8 @@ def main(argv) -> None:
     c = sub.add_parser("curves")
     c.add_argument("--seeds", type=int, default=6)
     k = sub.add_parser("compare")
+    k.add_argument("--data", default=None, help="the measurements (measured.csv, D50_*_load_cmod.csv; default "
+                                                "../shared/data/gregoire2013 beside the repository)")
     z = sub.add_parser("size-effect")
     for q in (p, u, c, k, z):
         q.add_argument("--out", default=OUT)
@@ -85,7 +94,7 @@ def main(argv) -> None:
      "predict": predict,
      "uniform": lambda a: beams.run_beams(beams.uniform_tests(a.eps_p), a.out, a.jobs),
      "curves": lambda a: beam_report.curves_figure(a.out, beam_tables.write_curve_tables(a.out, a.seeds)),
-     "compare": lambda a: print(beam_report.compare(a.out)),
+     "compare": compare,
      "size-effect": size_effect}[args.command](args)
 
 

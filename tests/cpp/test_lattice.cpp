@@ -370,17 +370,41 @@ TEST(Lattice, EdgeSharesOfVerticalColumnsInA3Cube) {
     }
 }
 
-TEST(Lattice, NodeMassesAndPositions) {
+// Direct check (run first by tests/mutation/run.py): the lumped mass of every
+// node of a 3 x 2 x 4 box, by its kind. A module of mass m = rho L0^3 gives
+// half to its centre node and 1/16 to each of its 8 corners, so a corner node
+// touched by c modules has c m/16: c = 1 at a box corner, 2 on a box edge, 4
+// on a face, 8 inside; every centre node has m/2; the total is rho V.
+// Exact to round-off (1e-14 relative).
+TEST(DirectLattice, LumpedMassOfEveryNodeKind) {
+    const double L0 = 0.02;
+    const int nx = 3, ny = 2, nz = 4;
+    const Lattice lat = buildCubicLattice(nx, ny, nz, L0, kMat);
+    const double mm = kMat.rho * L0 * L0 * L0;
+    auto inside = [](int i, int n) { return i > 0 && i < n; };  // not on the box's boundary along that axis
+    std::map<int, int> kinds;  // modules touching a corner node -> how many such nodes
+    for (int k = 0; k <= nz; ++k)
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                const int c = (inside(i, nx) ? 2 : 1) * (inside(j, ny) ? 2 : 1) * (inside(k, nz) ? 2 : 1);
+                ++kinds[c];
+                EXPECT_NEAR(lat.mass[lat.cornerId(i, j, k)], c * mm / 16, 1e-14 * mm) << i << j << k;
+            }
+    EXPECT_EQ(kinds, (std::map<int, int>{{1, 8}, {2, 4 * (nx - 1 + ny - 1 + nz - 1)},
+                                         {4, 2 * ((nx - 1) * (ny - 1) + (ny - 1) * (nz - 1) + (nz - 1) * (nx - 1))},
+                                         {8, (nx - 1) * (ny - 1) * (nz - 1)}}));
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                EXPECT_NEAR(lat.mass[lat.centreId(i, j, k)], mm / 2, 1e-14 * mm) << i << j << k;
+    double total = 0;
+    for (double x : lat.mass) total += x;
+    EXPECT_NEAR(total, nx * ny * nz * mm, 1e-13 * nx * ny * nz * mm);
+}
+
+TEST(Lattice, NodePositions) {
     const double L0 = 0.02;
     const Lattice lat = buildCubicLattice(3, 3, 3, L0, kMat);
-    const double mm = kMat.rho * L0 * L0 * L0;                          // mass of a module
-    EXPECT_NEAR(lat.mass[lat.cornerId(1, 1, 1)], mm / 2, 1e-12 * mm);   // interior corner: 8 x 1/16
-    EXPECT_NEAR(lat.mass[lat.centreId(1, 1, 1)], mm / 2, 1e-12 * mm);   // centre: 1/2
-    EXPECT_NEAR(lat.mass[lat.centreId(0, 0, 0)], mm / 2, 1e-12 * mm);   // every centre
-    EXPECT_NEAR(lat.mass[lat.cornerId(0, 0, 0)], mm / 16, 1e-12 * mm);  // cube corner: 1 module
-    EXPECT_NEAR(lat.mass[lat.cornerId(3, 3, 3)], mm / 16, 1e-12 * mm);
-    EXPECT_NEAR(lat.mass[lat.cornerId(1, 0, 0)], mm / 8, 1e-12 * mm);  // on a cube edge: 2 modules
-    EXPECT_NEAR(lat.mass[lat.cornerId(1, 2, 0)], mm / 4, 1e-12 * mm);  // on a face: 4 modules
     // Positions: corners on the L0 grid, centres in the middle of their module.
     const auto x = nodePositions(lat);
     EXPECT_DOUBLE_EQ(x[0][lat.cornerId(3, 1, 2)], 3 * L0);

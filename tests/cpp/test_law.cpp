@@ -1,6 +1,7 @@
 // Hillerborg's triangle (LDEM_SPEC section 3): the pure functions of one bar,
 // then the same law driven through the force loop (computeInternalForces) and
-// the energy bookkeeping (barEnergies) on a one-module lattice.
+// the energy bookkeeping (barEnergies) on a one-module lattice, and the limit
+// strain each bar of a Simulation gets.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/Simulation.hpp"
 
 using namespace ldem;
 
@@ -93,13 +95,22 @@ TEST(HillerborgLaw, DissipatedPlusStoredEqualsEnvelopeWork) {
     }
 }
 
-TEST(HillerborgLaw, UnloadingFollowsSecantToOrigin) {
+// Direct check (run first by tests/mutation/run.py): a damaged bar unloads on
+// the secant to the origin, F = EA eps eps_p (eps_r - kappa) / (kappa (eps_r - eps_p))
+// (the envelope's force at kappa, scaled by eps/kappa), never with its initial
+// stiffness EA: the law to round-off (1e-12 relative), and the force loop on
+// one module to 1e-9 (the strains of a uniform expansion, to round-off).
+TEST(DirectLaw, DamagedBarUnloadsOnItsSecant) {
     const Bar b;
     const double epsR = b.epsR();
     for (double kappa : {2 * b.epsP, 0.5 * (b.epsP + epsR), 0.9 * epsR}) {
         const double Fk = hillerborgForce(kappa, kappa, b.EA, b.epsP, epsR);
         ASSERT_GT(Fk, 0.0);
         ASSERT_LT(Fk, b.EA * b.epsP);
+        const double secant = b.EA * b.epsP * (epsR - kappa) / (kappa * (epsR - b.epsP));  // by hand
+        for (double eps : {0.9 * kappa, 0.5 * kappa, 1e-3 * kappa})
+            EXPECT_NEAR(hillerborgForce(eps, kappa, b.EA, b.epsP, epsR), secant * eps, 1e-12 * secant * eps)
+                << "kappa " << kappa << ", eps " << eps;
         // Force at kappa/2 on the unloading branch = half the envelope force at kappa.
         EXPECT_NEAR(hillerborgForce(0.5 * kappa, kappa, b.EA, b.epsP, epsR), 0.5 * Fk, 1e-12 * Fk);
         // Linear through the origin everywhere below kappa.
@@ -116,6 +127,56 @@ TEST(HillerborgLaw, UnloadingFollowsSecantToOrigin) {
     }
     // Below eps_p there is no damage: unloading is elastic with full stiffness.
     EXPECT_DOUBLE_EQ(hillerborgForce(0.3 * b.epsP, 0.8 * b.epsP, b.EA, b.epsP, epsR), 0.3 * b.EA * b.epsP);
+
+    // The same through the force loop: one module expanded uniformly by
+    // eps = 1.5 eps_p, every bar damaged to kappa = 3 eps_p with eps_r = 10 eps_p,
+    // so every bar carries EA eps s, s = eps_p (eps_r - kappa) / (kappa (eps_r - eps_p)) = 7/27.
+    // Corner (0, 0, 0) feels along x its edge (EA_n / 4: one module of four)
+    // and its diagonal (EA_d, direction (1, 1, 1)/sqrt 3): f_x = (EA_n / 4 + EA_d / sqrt 3) eps s.
+    const Material m;
+    const double L0 = 0.02, eps = 1.5 * m.epsP, s = 7.0 / 27;
+    const Lattice lat = buildCubicLattice(1, 1, 1, L0, m);
+    BarState bars(lat, m.epsP, std::vector<double>(lat.numBars(), 10 * m.epsP));
+    std::fill(bars.kappa.begin(), bars.kappa.end(), 3 * m.epsP);
+    bars.softening.assign(bars.softening.size(), 1);
+    const auto x0 = nodePositions(lat);
+    Field3 u(lat.numNodes()), f(lat.numNodes());
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+        u.x[i] = eps * x0[0][i], u.y[i] = eps * x0[1][i], u.z[i] = eps * x0[2][i];
+    BarForceBuffers g;
+    computeInternalForces(lat, u, bars, g, f);
+    const double An = 0.4 * L0 * L0, Ad = 2 * 1.125 / std::sqrt(3.0) * An;
+    const double want = m.E * (An / 4 + Ad / std::sqrt(3.0)) * eps * s;
+    EXPECT_NEAR(f.x[lat.cornerId(0, 0, 0)], want, 1e-9 * want);
+    for (double k : bars.kappa) EXPECT_EQ(k, 3 * m.epsP);  // unloading: no new damage
+}
+
+// Direct check (run first by tests/mutation/run.py): each bar's limit strain
+// in a Simulation is eps_r = 2 A_f G_f / (EA eps_p L) with its own length L,
+// by hand: L0 for edges and centre-centre bars, sqrt(3)/2 L0 for diagonals
+// (uniform G_f, so every bar is known). A_f and EA are the bar's own (its
+// share included: it cancels). Exact to round-off (1e-13 relative).
+TEST(DirectLaw, EachBarsLimitStrainUsesItsOwnLength) {
+    Material m;
+    m.GfCV = 0;
+    RunParams rp;
+    rp.threads = 1;
+    const double L0 = 0.02;
+    const Simulation sim(2, 2, 2, L0, m, LoadingParams{}, rp);
+    const BarTable t = listBars(sim.lattice());
+    const std::vector<double>& epsR = sim.bars().epsR;
+    ASSERT_EQ(epsR.size(), t.L.size());
+    int diagonals = 0;
+    for (std::size_t b = 0; b < epsR.size(); ++b) {
+        const bool diagonal = sim.lattice().families[t.family[b]].kind == BarKind::Diagonal;
+        diagonals += diagonal;
+        const double L = diagonal ? std::sqrt(3.0) / 2 * L0 : L0;
+        EXPECT_NEAR(t.L[b], L, 1e-15 * L0) << "bar " << b;
+        const double want = 2 * t.Af[b] * m.GfMean / (t.EA[b] * m.epsP * L);
+        ASSERT_GT(want, m.epsP);  // not clamped
+        EXPECT_NEAR(epsR[b], want, 1e-13 * want) << "bar " << b << (diagonal ? " (diagonal)" : "");
+    }
+    EXPECT_EQ(diagonals, 8 * 8);
 }
 
 TEST(HillerborgLaw, CompressionIsElasticEvenAfterRupture) {

@@ -1,9 +1,11 @@
 // Nayfeh-Hefzy equivalence (LDEM_SPEC section 2): the closed-form constants,
-// and the elastic tensor of the infinite lattice computed from the built
-// lattice's own bar families (affine deformation), which must be the isotropic
-// tensor of (E, nu) for nu = 0.25.
+// the areas the built lattice gives each bar family, and the elastic tensor of
+// the infinite lattice computed from the built lattice's own bar families
+// (affine deformation), which must be the isotropic tensor of (E, nu) for
+// nu = 0.25.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 #include "ldem/Lattice.hpp"
@@ -22,6 +24,31 @@ TEST(Material, NayfehHefzyConstantsForNuQuarter) {
     EXPECT_NEAR(nayfehPhi(0.0), 0.5, 1e-15);
     EXPECT_NEAR(normalFractureArea(0.1385, L0), 0.1385 * L0 * L0, 1e-18);
     EXPECT_NEAR(diagonalFractureArea(0.1385, L0), 0.1385 * 1.3225 * L0 * L0, 1e-18);
+}
+
+// Direct check (run first by tests/mutation/run.py): every family of the built
+// lattice carries the area of the spec's closed form, worked by hand here:
+//   nu = 0.25: delta = 9/8, phi = (9 + 9)/(18 + 27) = 2/5;
+//   nu = 0.2:  delta = 3/4, phi = (9 + 6)/(18 + 18) = 5/12;
+//   A_n = phi L0^2, A_d = (2 delta / sqrt 3) A_n, A_f = c_a L0^2 and c_a (1.15 L0)^2.
+// Exact to round-off (1e-14 relative).
+TEST(DirectMaterial, BarAreasOfEachFamilyAreNayfehHefzys) {
+    const double L0 = 0.02;
+    for (const auto& [nu, delta, phi] : {std::array<double, 3>{0.25, 9.0 / 8, 2.0 / 5},
+                                         std::array<double, 3>{0.2, 3.0 / 4, 5.0 / 12}}) {
+        Material m;
+        m.nu = nu;
+        const Lattice lat = buildCubicLattice(2, 2, 2, L0, m);
+        const double An = phi * L0 * L0, Ad = 2 * delta / std::sqrt(3.0) * An;
+        const double Afn = m.ca * L0 * L0, Afd = m.ca * 1.3225 * L0 * L0;
+        ASSERT_EQ(lat.families.size(), 14u);
+        for (const BarFamily& f : lat.families) {
+            const bool diagonal = f.kind == BarKind::Diagonal;
+            SCOPED_TRACE(testing::Message() << "nu " << nu << ", family of kind " << int(f.kind));
+            EXPECT_NEAR(f.EA, m.E * (diagonal ? Ad : An), 1e-14 * m.E * An);
+            EXPECT_NEAR(f.Af, diagonal ? Afd : Afn, 1e-14 * Afn);
+        }
+    }
 }
 
 TEST(Material, ValidateRejectsNonsense) {

@@ -2,7 +2,12 @@
 // and the separation from the groups its measures name, in any direction.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <set>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include "ldem/Simulation.hpp"
@@ -28,7 +33,118 @@ Specimen prismPulledAlongX(const Material& m) {
     s.measures = {"held", "pulled", 0, lat.ny * lat.L0 * lat.nz * lat.L0, lat.nx * lat.L0, 1.0};
     return s;
 }
+// The prescribed DOFs of a group's nodes as (node, dim, weight), in a set.
+std::set<std::tuple<std::int32_t, int, double>> prescribedOn(const Specimen& s, const std::string& group) {
+    const std::vector<std::int32_t>& nodes = s.groups.at(group);
+    const std::set<std::int32_t> in(nodes.begin(), nodes.end());
+    std::set<std::tuple<std::int32_t, int, double>> out;
+    const Prescribed& p = s.prescribed;
+    for (std::size_t k = 0; k < p.node.size(); ++k)
+        if (in.count(p.node[k])) out.emplace(p.node[k], p.dim[k], p.weight[k]);
+    return out;
+}
 }  // namespace
+
+// Direct checks (run first by tests/mutation/run.py): the probe, U_min, the
+// triangular drive's profile and the rollers, each against hand values.
+
+// A probe reads u_b - u_a: on the 2 x 2 x 2 cube pulled at 0.1/s, the top
+// corner (0, 0) against the bottom one (u = 0) reads the drive U = mean strain x
+// height (uniform load); the top corner against the first module's
+// centre node reads their difference, positive (the top moves most) and
+// below U; a probe with no node a reads u_b alone. Exact (the sum of two
+// terms), the drive to round-off (1e-15 relative).
+TEST(DirectSpecimen, ProbeReadsUbMinusUa) {
+    Material m;
+    LoadingParams lp;
+    lp.strainRate = 0.1;
+    RunParams rp;
+    rp.threads = 1, rp.recordEvery = 50;
+    Specimen s = cubeTestSpecimen(2, 2, 2, 0.02, m, lp);
+    const Lattice& lat = s.lattice;
+    const std::int32_t top = lat.cornerId(0, 0, 2), bottom = lat.cornerId(0, 0, 0), centre = lat.centreId(0, 0, 0);
+    s.measures.probes = {{"across", bottom, top, 2}, {"inner", centre, top, 2}, {"alone", -1, centre, 2}};
+    const double height = 2 * 0.02;
+    Simulation sim(std::move(s), m, lp, rp);
+    int records = 0;
+    sim.run([&](const CurvePoint& p) {
+        const Field3& u = sim.displacements();
+        EXPECT_EQ(p.probes.at(0), u.z[top]) << "record " << records;  // u.z[bottom] = 0
+        EXPECT_NEAR(u.z[top], p.meanStrain * height, 1e-15 * u.z[top]) << "record " << records;
+        EXPECT_EQ(p.probes.at(1), u.z[top] - u.z[centre]) << "record " << records;
+        EXPECT_EQ(p.probes.at(2), u.z[centre]) << "record " << records;
+        return ++records < 10;
+    });
+    ASSERT_EQ(records, 10);
+    const Field3& u = sim.displacements();
+    EXPECT_GT(u.z[centre], 0.0);
+    EXPECT_GT(u.z[top] - u.z[centre], 0.0);
+    EXPECT_LT(u.z[top] - u.z[centre], u.z[top]);
+}
+
+// U_min = E[G_f] x the face's area: 3 x 2 modules of 0.02 m, 6 L0^2 (not the
+// (n+1)^2 L0^2 of the face's nodes). Round-off (1e-15 relative).
+TEST(DirectSpecimen, MinFractureEnergyIsGfTimesTheCrossSection) {
+    Material m;
+    m.GfMean = 80.0;
+    RunParams rp;
+    rp.threads = 1;
+    const double L0 = 0.02, area = 3 * L0 * 2 * L0;
+    const Simulation sim(3, 2, 2, L0, m, LoadingParams{}, rp);
+    EXPECT_NEAR(sim.measures().area, area, 1e-15 * area);
+    EXPECT_NEAR(sim.minFractureEnergy(), 80.0 * area, 1e-15 * 80.0 * area);
+}
+
+// The triangular drive moves the top node at x by U x / width: zero at x = 0,
+// U at the opposite edge, mean U/2 over the face's nodes (0, 1/4, ..., 1 along
+// x: mean exactly 1/2), so the most-pulled edge moves twice the mean. The
+// specimen's mean drive weight is that mean. Exact to round-off (1e-15).
+TEST(DirectSpecimen, TriangularDriveProfile) {
+    Material m;
+    LoadingParams lp;
+    lp.shape = LoadShape::Triangular;
+    const double L0 = 0.02;
+    const Specimen s = cubeTestSpecimen(4, 3, 2, L0, m, lp);
+    const auto x = nodePositions(s.lattice);
+    const auto top = prescribedOn(s, "top");
+    ASSERT_EQ(top.size(), 5u * 4u);  // z only: the top is laterally free by default
+    double sum = 0, lowest = 1, highest = 0;
+    for (const auto& [n, d, w] : top) {
+        EXPECT_EQ(d, 2);
+        EXPECT_NEAR(w, x[0][n] / (4 * L0), 1e-15) << "node " << n;
+        sum += w, lowest = std::min(lowest, w), highest = std::max(highest, w);
+    }
+    EXPECT_EQ(lowest, 0.0);
+    EXPECT_NEAR(highest, 1.0, 1e-15);
+    EXPECT_NEAR(sum / top.size(), 0.5, 1e-15);
+    EXPECT_NEAR(s.measures.meanDriveWeight, 0.5, 1e-15);
+}
+
+// On rollers the lower face holds z everywhere and only the rigid motion
+// otherwise: x and y at corner (0, 0), y at corner (nx, 0); held laterally,
+// x, y and z at every node. Checked on the prescribed DOFs of a 3 x 2 face
+// (so (nx, 0), (0, ny) and (nx, ny) differ). Exact.
+TEST(DirectSpecimen, RollersHoldExactlyTheirDofs) {
+    Material m;
+    const int nx = 3, ny = 2;
+    for (bool rollers : {true, false}) {
+        LoadingParams lp;
+        lp.bottomLateralFree = rollers;
+        const Specimen s = cubeTestSpecimen(nx, ny, 2, 0.02, m, lp);
+        const Lattice& lat = s.lattice;
+        std::set<std::tuple<std::int32_t, int, double>> want;
+        for (int j = 0; j <= ny; ++j)
+            for (int i = 0; i <= nx; ++i) {
+                want.emplace(lat.cornerId(i, j, 0), 2, 0.0);
+                if (!rollers) want.emplace(lat.cornerId(i, j, 0), 0, 0.0), want.emplace(lat.cornerId(i, j, 0), 1, 0.0);
+            }
+        if (rollers)
+            want.emplace(lat.cornerId(0, 0, 0), 0, 0.0), want.emplace(lat.cornerId(0, 0, 0), 1, 0.0),
+                want.emplace(lat.cornerId(nx, 0, 0), 1, 0.0);
+        EXPECT_EQ(prescribedOn(s, "bottom"), want) << (rollers ? "rollers" : "held");
+        EXPECT_EQ(s.groups.at("bottom").size(), std::size_t((nx + 1) * (ny + 1)));
+    }
+}
 
 TEST(Specimen, APrismPulledAlongXIsTheCubeTestsPrismPulledAlongZ) {
     Material m;

@@ -12,10 +12,13 @@ a one-line description) this script
   3. builds incrementally in a scratch build tree configured once (only the
      changed files recompile; the LTO link of _core and ldem_tests still takes
      a while),
-  4. runs the suite, failing fast: the GoogleTest binary with
-     --gtest_fail_fast, then `pytest -x -q tests/py` on the scratch build
-     (PYTHONPATH / LDEM_BUILD_PYTHON = the scratch build's python folder,
-     LDEM_SOURCE_DIR = the scratch source),
+  4. runs the suite, failing fast, direct checks first: the GoogleTest binary
+     with --gtest_fail_fast on the suites named Direct* (fast checks of one
+     quantity each against hand values), then `pytest -x -q -m direct
+     tests/py`, then the rest of each the same way (PYTHONPATH /
+     LDEM_BUILD_PYTHON = the scratch build's python folder, LDEM_SOURCE_DIR =
+     the scratch source), so that the first failing test names the quantity
+     a mutation broke, in seconds, where one exists,
 
 and records "caught" (with the first failing test), "NOT CAUGHT" (the whole
 suite passed) or "did not build", with the times. The repository's working
@@ -198,14 +201,15 @@ class Scratch:
         return sh(targets, log=log, check=False).returncode == 0
 
     # -- the suite, failing fast --------------------------------------------------------
-    def gtest(self, log, timeout, skip=(), fail_fast=True):
+    def gtest(self, log, timeout, skip=(), fail_fast=True, direct=False):
         """[] if every GoogleTest passed, else the failing tests (the first only when
-        failing fast), or what went wrong. skip: tests not to run."""
+        failing fast), or what went wrong. skip: tests not to run; direct: the
+        direct suites only, else all the others."""
         cmd = [os.path.join(self.build, "tests", "ldem_tests"), "--gtest_color=no"]
         if fail_fast:
             cmd.append("--gtest_fail_fast")
-        if skip:
-            cmd.append("--gtest_filter=-" + ":".join(skip))
+        left_out = list(skip) + ([] if direct else [GTEST_DIRECT])
+        cmd.append(f"--gtest_filter={GTEST_DIRECT if direct else '*'}" + ("-" + ":".join(left_out) if left_out else ""))
         try:
             r = sh(cmd, cwd=os.path.join(self.build, "tests"), env=TEST_ENV, log=log, timeout=timeout,
                    check=False)
@@ -216,8 +220,9 @@ class Scratch:
         failed = all_matches(log, GTEST_FAILED_RE)
         return failed or [f"{last_match(log, RUN_RE) or '?'} (exit {r.returncode}: crashed)"]
 
-    def pytest(self, log, timeout, skip=(), fail_fast=True):
-        """[] if every pytest test passed, else the failing tests (node ids under tests/py)."""
+    def pytest(self, log, timeout, skip=(), fail_fast=True, direct=False):
+        """[] if every pytest test passed, else the failing tests (node ids under
+        tests/py). direct: the tests marked direct only, else all the others."""
         py = os.path.join(self.build, "python")
         env = dict(TEST_ENV, PYTHONPATH=py, LDEM_BUILD_PYTHON=py, LDEM_SOURCE_DIR=self.src,
                    PYTHONDONTWRITEBYTECODE="1")
@@ -225,7 +230,8 @@ class Scratch:
         spec = os.path.realpath(os.path.join(REPO, "..", "shared", "LDEM_SPEC.md"))
         if "LDEM_SPEC" not in env and os.path.isfile(spec):
             env["LDEM_SPEC"] = spec
-        cmd = [PYTHON, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rfE", "tests/py"]
+        cmd = [PYTHON, "-m", "pytest", "-q", "-p", "no:cacheprovider", "-rfE", "-m",
+               "direct" if direct else "not direct", "tests/py"]
         if fail_fast:
             cmd.insert(3, "-x")
         for test in skip:
@@ -234,11 +240,15 @@ class Scratch:
             r = sh(cmd, cwd=self.src, env=env, log=log, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             return [f"timed out after {timeout} s (last: {last_match(log, PYTEST_FILE_RE) or '?'})"]
-        if r.returncode == 0:
+        if r.returncode in (0, PYTEST_NO_TESTS):  # none left: every one of the pass was left out
             return []
         return all_matches(log, PYTEST_FAILED_RE) or [f"exit {r.returncode} (see log)"]
 
 
+# The direct checks: GoogleTest suites named Direct* (tests/cpp) and pytest tests
+# marked direct (tests/py/conftest.py registers the marker and runs them first).
+GTEST_DIRECT = "Direct*.*"
+PYTEST_NO_TESTS = 5  # pytest's exit code when it selects no test
 GTEST_FAILED_RE = re.compile(r"^\[  FAILED  \] (\w+\.\w+)")
 RUN_RE = re.compile(r"^\[ RUN      \] (\S+)")
 PYTEST_FAILED_RE = re.compile(r"^(?:FAILED|ERROR) (?:tests/py/)?(.+?)(?: - .*)?$")
@@ -267,19 +277,22 @@ def last_match(path, regex):
 
 
 def run_suite(scratch, tag, timeout, skip=None, fail_fast=True):
-    """Runs GoogleTest then pytest. Failing fast: (first failure or None, seconds);
-    else (every failure as {"gtest": [...], "pytest": [...]}, seconds).
+    """Runs the direct checks (GoogleTest, then pytest), then the rest of each.
+    Failing fast: (first failure or None, seconds); else (every failure as
+    {"gtest": [...], "pytest": [...]}, seconds).
     skip: {"gtest": [...], "pytest": [...]}, tests left out (they fail unmutated)."""
     skip = skip or {}
     t = time.monotonic()
-    failures = {}
-    for stage in ("gtest", "pytest"):
-        log = os.path.join(scratch.logs, f"{tag}.{stage}.log")
-        if os.path.exists(log):
-            os.remove(log)
-        failures[stage] = getattr(scratch, stage)(log, timeout, skip.get(stage, ()), fail_fast)
-        if fail_fast and failures[stage]:
-            return f"{stage}: {failures[stage][0]}", time.monotonic() - t
+    failures = {"gtest": [], "pytest": []}
+    for direct in (True, False):
+        for stage in ("gtest", "pytest"):
+            log = os.path.join(scratch.logs, f"{tag}.{stage}{'.direct' if direct else ''}.log")
+            if os.path.exists(log):
+                os.remove(log)
+            failed = getattr(scratch, stage)(log, timeout, skip.get(stage, ()), fail_fast, direct)
+            failures[stage] += failed
+            if fail_fast and failed:
+                return f"{stage}: {failed[0]}", time.monotonic() - t
     return (None if fail_fast else failures), time.monotonic() - t
 
 
@@ -334,8 +347,9 @@ def report(results, head, wall, baseline, skip, argv):
         f"did not build {counts[NO_BUILD]}, did not apply {counts[NOT_APPLIED]}. "
         f"Wall time {fmt_s(wall)}" + (f" (the unmutated suite: {baseline})." if baseline else "."),
         "",
-        "Each mutation is applied alone to a scratch copy of the commit, built, and the suite run failing fast "
-        "(GoogleTest with `--gtest_fail_fast`, then `pytest -x -q tests/py`); \"first failing test\" is the "
+        "Each mutation is applied alone to a scratch copy of the commit, built, and the suite run failing fast, "
+        "direct checks first (GoogleTest with `--gtest_fail_fast` on the `Direct*` suites, then `pytest -x -q -m "
+        "direct tests/py`, then the rest of each the same way); \"first failing test\" is the "
         "first test that failed, \"build\" and \"tests\" the times of the incremental build and of the suite "
         "up to that failure (the whole suite for a mutation not caught).",
         "",

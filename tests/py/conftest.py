@@ -64,6 +64,19 @@ def _check_imported_from_build():
 _check_imported_from_build()
 
 
+def pytest_configure(config):
+    config.addinivalue_line("markers", "direct: a fast check of one quantity against hand values; runs first "
+                                       "(tests/mutation/run.py gives the direct checks a pass of their own)")
+
+
+@pytest.hookimpl(trylast=True)
+def pytest_collection_modifyitems(items):
+    """Direct checks first (a stable sort: each group keeps its file order), so
+    that `pytest -x` stops at the check that names a bug, not at a long run
+    that only notices something changed."""
+    items.sort(key=lambda item: item.get_closest_marker("direct") is None)
+
+
 def subprocess_env(**extra) -> dict:
     """The environment of every subprocess of the tests (python3, ldem, yade-double):
     the build under test first on PYTHONPATH, nothing else of ours."""

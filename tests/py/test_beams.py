@@ -4,7 +4,7 @@ tables recover Bažant's law from points that follow it."""
 import numpy as np
 import pytest
 
-from ldem.study import beam_report, beam_tables, beams
+from ldem.study import beam_tables, beams
 
 
 def test_bazant_s_law_is_recovered_from_points_on_it():
@@ -44,13 +44,3 @@ def test_the_beams_are_the_paper_s(D, notch):
     assert name == "cmod" and dim == 0 and x[b, 0] - x[a, 0] == pytest.approx(g.L0)
     assert x[a, 2] == 0 and x[b, 2] == 0 and x[a, 0] < mid < x[b, 0]
 
-
-def test_compare_puts_the_prediction_beside_the_measurement(tmp_path):
-    """gregoire2013.py compare: predicted / measured for every measured beam."""
-    (tmp_path / "predictions.csv").write_text("D_mm,notch_ratio,peak_load_kN,cv,seeds,min_kN,max_kN\n"
-                                              "50,0.5,1.5,0.02,6,1.4,1.6\n100,0.5,2.5,0.04,6,2.4,2.6\n")
-    (tmp_path / "measured.csv").write_text("D_mm,notch_ratio,peak_load_kN,sd_kN\n50,0.5,1.2,0.1\n100,0.5,2.0,\n")
-    beam_report.compare(str(tmp_path))
-    rows = (tmp_path / "comparison.md").read_text().splitlines()[2:]
-    assert [r.split("|")[-2].strip() for r in rows] == ["1.250", "1.250"]
-    assert "1.20 (0.1)" in rows[0] and "2.00 (-)" in rows[1] and (tmp_path / "comparison.png").stat().st_size > 0

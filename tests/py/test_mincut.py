@@ -101,6 +101,19 @@ def test_equals_linear_program_on_a_larger_cube():
     assert_within_bound(cheapest_cut(sim), lp.fun, n1, n2, e, top)
 
 
+@pytest.mark.direct
+def test_uniform_field_cut_and_u_min_by_hand():
+    """Uniform G_f on the 2 x 2 x 2 cube: the cheapest cut is the face's, the
+    vertical edges of the upper module layer (shares summing to nx ny = 4 full
+    bars) and the 4 diagonals of each upper module to the top: G_f c_a L0^2
+    (4 + 16 x 1.15^2) = 0.1394 J against U_min = G_f x 4 L0^2 = 0.16 J. The cut
+    to the documented bound (1e-6 relative); U_min to round-off."""
+    sim = ldem.CubeTest(size=0.04, L0=0.02, Gf_cv=0, threads=1).simulation()
+    gf, c_a, L0 = 100.0, 0.1385, 0.02
+    assert sim.min_fracture_energy == pytest.approx(gf * 4 * L0 ** 2, rel=1e-15)
+    assert cheapest_cut(sim) == pytest.approx(gf * c_a * L0 ** 2 * (4 + 16 * 1.15 ** 2), rel=1e-6)
+
+
 def test_uniform_field_is_no_dearer_than_a_horizontal_plane():
     sim = ldem.CubeTest(size=0.12, Gf_cv=0, threads=1).simulation()
     n, n1, n2, e, top, bottom = graph(sim)

@@ -14,6 +14,7 @@ from ldem.cube import CubeTest
 TINY = dict(strain_rate=FAST["strain_rate"], final_strain=0.02, threads=1)
 
 
+@pytest.mark.direct
 def test_fractal_fit_recovers_known_exponent():
     b = np.array([0.12, 0.24, 0.48, 0.72, 0.96])
     u = 3.7 * (b / 0.12) ** 2.31

@@ -1,5 +1,6 @@
-"""The beams' figures and their comparison with the measurements (reads the
-tables of ldem.study.beam_tables and the cases' pictures; computes nothing)."""
+"""The beams' figures (reads the tables of ldem.study.beam_tables and the cases'
+pictures; computes nothing). Their comparison with the measurements is
+ldem.study.beam_comparison."""
 from __future__ import annotations
 
 import glob
@@ -8,7 +9,6 @@ import re
 
 import numpy as np
 
-from .. import io
 from .beams import DEPTHS, FT, NOTCHES
 
 
@@ -76,32 +76,3 @@ def cracks_mosaic(folder) -> None:
     fig.savefig(os.path.join(folder, "cracks.png"), dpi=100)
     plt.close(fig)
 
-
-def compare(out: str) -> str:
-    """comparison.md and comparison.png: the committed predictions against the
-    measured peak loads (measured.csv: D_mm, notch_ratio, peak_load_kN, sd_kN);
-    returns the table."""
-    from .. import plots
-    import matplotlib.pyplot as plt
-
-    read = lambda name: {(float(r["D_mm"]), float(r["notch_ratio"])): r  # noqa: E731
-                         for r in io.read_table(os.path.join(out, name))}
-    predicted, measured = read("predictions.csv"), read("measured.csv")
-    lines = ["| D [mm] | notch / D | predicted [kN] (CV) | measured [kN] (sd) | predicted / measured |",
-             "|---|---|---|---|---|"]
-    fig, ax = plt.subplots()
-    for k, notch in enumerate(NOTCHES):
-        Ds = sorted(D for D, n in measured if n == notch)
-        p = [float(predicted[D, notch]["peak_load_kN"]) for D in Ds]
-        m = [float(measured[D, notch]["peak_load_kN"]) for D in Ds]
-        for D, a, b in zip(Ds, p, m):
-            lines.append(f"| {D:g} | {notch:g} | {a:.2f} ({float(predicted[D, notch]['cv']):.3f}) | {b:.2f} "
-                         f"({measured[D, notch]['sd_kN'] or '-'}) | {a / b:.3f} |")
-        ax.plot(Ds, m, "o-", color=f"C{k}", label=f"measured, notch {notch:g} D")
-        ax.plot(Ds, p, "s--", color=f"C{k}", mfc="none", label=f"ldem (predicted), notch {notch:g} D")
-    ax.set(xscale="log", yscale="log", xlabel="D [mm]", ylabel="peak load [kN]",
-           title="Grégoire et al. 2013: blind prediction against measurement")
-    ax.legend(fontsize=7)
-    plots.save(fig, os.path.join(out, "comparison.png"))
-    io.write_text(os.path.join(out, "comparison.md"), "\n".join(lines) + "\n")
-    return "\n".join(lines)

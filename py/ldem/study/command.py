@@ -9,6 +9,7 @@ from typing import List, Sequence
 
 from ..helptext import HelpFormatter, add_output_flags
 from ..cube import CubeTest, settings
+from .beam_comparison import compare as compare_beams
 from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
 from .beam_tables import write_curve_tables, write_size_effect
 from .beams import run_beams, series_tests, uniform_tests, write_predictions
@@ -171,8 +172,19 @@ def cmd_refinement(args) -> int:
 
 def cmd_beams(args) -> int:
     """The Gregoire et al. (2013) beams (ldem.study.beams): the unfinished cases,
-    then predictions.csv, the curve tables and the size effect."""
-    if not (args.eps_p > 0):
+    then predictions.csv, the curve tables and the size effect; with --compare,
+    only the comparison of the committed prediction with the measurements."""
+    if args.compare is not None:
+        try:
+            rows = compare_beams(args.out, args.compare or None)
+        except FileNotFoundError as e:
+            raise ValueError(str(e)) from None
+        for r in rows:
+            print(f"  D = {r['D_mm']:g} mm, notch {r['notch']:g} D: predicted {r['predicted_kN']:.3f} kN, "
+                  f"measured {r['measured_kN']:.3f} kN ({r['difference_pct']:+.1f} %)")
+        print(f"wrote {args.out}/comparison.md and comparison.png")
+        return 0
+    if args.eps_p is None or not (args.eps_p > 0):
         raise ValueError(f"--eps-p must be positive (got {args.eps_p}; scripts/gregoire2013.py calibrate finds it)")
     tests = uniform_tests(args.eps_p) if args.uniform else series_tests(args.eps_p, _seeds(args))
     run_beams(tests, args.out, args.jobs)
@@ -261,8 +273,11 @@ def add_parser(sub) -> None:
     b = kinds.add_parser("beams", help="the notched beams of Gregoire et al. (2013): runs, predictions, size effect",
                          formatter_class=HelpFormatter)
     b.add_argument("--out", required=True, metavar="DIR", help="study folder (cases/, tables, figures)")
-    b.add_argument("--eps-p", dest="eps_p", type=float, required=True, help="eps_p of the calibration [-]")
+    b.add_argument("--eps-p", dest="eps_p", type=float, help="eps_p of the calibration [-] (required to run)")
     b.add_argument("--seeds", type=int, default=6, help="random specimens per beam (seeds 1..N)")
     b.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once, one thread each")
     b.add_argument("--uniform", action="store_true", help="the beams with a uniform G_f (cases_cv0/) instead")
+    b.add_argument("--compare", nargs="?", const="", default=None, metavar="DATA",
+                   help="run nothing: compare DIR's prediction with the measurements in DATA (default "
+                        "../shared/data/gregoire2013 beside the repository holding DIR): comparison.md|png")
     b.set_defaults(func=cmd_beams)
