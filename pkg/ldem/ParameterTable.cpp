@@ -1,6 +1,9 @@
 #include "ldem/ParameterTable.hpp"
 
+#include <algorithm>
 #include <climits>
+#include <cstdint>
+#include <limits>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -46,13 +49,20 @@ T fromValue(const std::string& name, const ParamValue& v, const Domain& d) {
         throw std::invalid_argument("unknown " + name + " '" + (s ? *s : std::string("?")) + "' (expected " +
                                     expected + ")");
     } else {
-        std::int64_t n = 0;
-        if (const auto* i = std::get_if<std::int64_t>(&v)) n = *i;
-        else if (const auto* x = std::get_if<double>(&v); x && std::floor(*x) == *x && std::abs(*x) < 9e18) n = std::int64_t(*x);
-        else throw std::invalid_argument(name + " must be a whole number");
-        if (!std::is_same_v<T, std::int64_t> && (n > INT_MAX || n < INT_MIN))
-            throw std::invalid_argument(name + " is out of range (got " + std::to_string(n) + ")");
-        return T(n);
+        const auto* i = std::get_if<std::int64_t>(&v);
+        const auto* x = std::get_if<double>(&v);
+        if (!i && !(x && std::floor(*x) == *x)) throw std::invalid_argument(name + " must be a whole number");
+        // What T holds (an int64 seed, an int count), from the domain's lower end:
+        // the message says the range, not only that the value does not fit.
+        const std::int64_t lo = std::max<std::int64_t>(std::numeric_limits<T>::min(),
+                                                       d.lo > -9.2e18 ? std::int64_t(d.lo) : INT64_MIN);
+        const std::int64_t hi = std::numeric_limits<T>::max();
+        const bool fits = i ? *i >= std::numeric_limits<T>::min() && *i <= hi
+                            : *x >= double(std::numeric_limits<T>::min()) && *x < 0x1p63 && std::int64_t(*x) <= hi;
+        if (!fits)
+            throw std::invalid_argument(name + " is out of range: a whole number from " + std::to_string(lo) + " to " +
+                                        std::to_string(hi) + " (got " + (i ? std::to_string(*i) : formatNumber(*x)) + ")");
+        return T(i ? *i : std::int64_t(*x));
     }
 }
 }  // namespace

@@ -55,7 +55,7 @@ struct RunSummary {
     RunEvent loadLoss;            // stress averaged over the window below stopFraction x peak
     RunEvent separation;          // no chain of intact bars joins the two faces: U_num = separation.fracture
     double fractureEnergy = 0;    // fracture energy dissipated at the end [J]
-    double energyBalanceError = 0;  // max |residual| / max external work over the records
+    double energyBalanceError = 0;  // max |residual| / the largest energy in play over the records
     bool energyError = false;     // energyBalanceError > energyTolerance
     std::int64_t steps = 0;
     std::string stopReason;       // "separated", "load_lost", "final_strain" or "stopped"
@@ -83,7 +83,7 @@ private:
 // a record (a checkpoint) and continue bit-identically (restore()).
 struct RunProgress {
     RunSummary summary;
-    double maxWork = 0, maxResidual = 0;
+    double maxEnergy = 0, maxResidual = 0;  // the largest of W and K + E + F + D, and of |W - (K + E + F + D)|
     LoadLossDetector loadLoss;
     std::int64_t lastCheck = 0;        // step of the last separation test
     bool started = false;

@@ -8,9 +8,9 @@ import os
 import signal
 import sys
 
-import numpy as np
 
 from .bench import cmd_bench
+from .rerun import RERUN_KEYS, cmd_rerun  # noqa: F401 (RERUN_KEYS: what a rerun compares)
 from .helptext import HelpFormatter, add_output_flags
 
 EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
@@ -54,6 +54,8 @@ def cube_from_args(args) -> "CubeTest":
 
 
 def cmd_cube(args) -> int:
+    if args.restart and finished(args.restart):
+        return 0
     if args.restart:  # the test of the checkpoint, in its folder
         from .io import read_checkpoint
 
@@ -75,8 +77,29 @@ def cmd_cube(args) -> int:
 
     result = run_cube(test, out=args.out, progress=progress, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
-                      checkpoint_every=args.checkpoint_every, restart=bool(args.restart))
+                      checkpoint_every=args.checkpoint_every, restart=bool(args.restart),
+                      checkpoint_seconds=_checkpoint_seconds(args))
     return report_run(result, args, edge=test.load == "triangular")
+
+
+def _checkpoint_seconds(args) -> float:
+    """--checkpoint-minutes in s; none under mpirun (checkpoints of a split lattice are not supported)."""
+    from . import parallel
+
+    return 60.0 * args.checkpoint_minutes if parallel.ranks() == 1 else 0.0
+
+
+def finished(out: str) -> bool:
+    """out holds a finished run (summary.json says done): --restart says so and runs nothing."""
+    from .io import read_summary
+
+    try:
+        done = read_summary(os.path.join(out, "summary.json")).get("status") == "done"
+    except (OSError, ValueError):
+        return False
+    if done:
+        print(f"{out} is a finished run (summary.json: done): nothing to continue")
+    return done
 
 
 def _snapshots(args) -> list:
@@ -101,13 +124,18 @@ def report_run(result, args, edge: bool = False) -> int:
         print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
               f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J{cut})")
     elif test.stop_at == "separation":
-        print(f"NOT separated (stop: {s['stop_reason']}): fracture energy at the end {s['fracture_energy_J']:.4g} J "
-              f"is not U_num")
+        stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
+        print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
+              f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
     ranks = f" on {s['mpi_ranks']} MPI ranks" if s.get("mpi_ranks", 1) > 1 else ""
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
           f"{s['wall_s']:.1f} s wall{ranks}")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
+    if (q := s["quasi_static"])["flagged"]:
+        print(f"ldem {args.command}: warning: not quasi-static: the kinetic energy at the peak is "
+              f"{q['kinetic_over_work_at_peak']:.1%} of the external work (above {q['kinetic_limit']:.0%}): the peak "
+              f"depends on the strain rate; lower it (summary.json: quasi_static)", file=sys.stderr)
     f = args.figure_format
     print(f"wrote {args.out}/: curve.csv summary.json"
           + ("" if args.no_plots else f" curve.{f} energies.{f} cracks.{f} bars.pvd crack.pvd"))
@@ -119,63 +147,31 @@ def report_run(result, args, edge: bool = False) -> int:
     return 0
 
 
-# The summary's numbers that a rerun must reproduce exactly (not when, where, how fast).
-RERUN_KEYS = ("peak_stress_MPa", "strain_at_peak", "edge_strain_at_peak", "separated", "U_num_J", "load_loss",
-              "separation", "fracture_energy_J", "U_mincut_J", "energy_balance_error", "stop_reason", "steps",
-              "n_bars", "clamped_bars", "dt_s")
-
-
-def cmd_rerun(args) -> int:
-    import json
-
-    from .cube import CubeTest
-    from .io import read_curve, read_summary
-    from .runner import run_cube
-
-    path = os.path.join(args.dir, "summary.json")
-    try:
-        old = read_summary(path)
-    except OSError as e:
-        raise ValueError(f"cannot read {path}: {e.strerror}") from None
-    except json.JSONDecodeError as e:
-        raise ValueError(f"{path} is not JSON: {e}") from None
-    known = {f.name for f in dataclasses.fields(CubeTest)}
-    params = {k: v for k, v in old.get("parameters", {}).items() if k in known}
-    if not params:
-        raise ValueError(f"{path} holds no parameters to rerun")
-    out = args.out or os.path.join(args.dir, "rerun")
-    prov = old.get("provenance") or {}
-    print(f"rerun of {args.dir} (ldem {prov.get('ldem_version', '?')}, git {prov.get('git_commit') or '?'}, "
-          f"{prov.get('date', '?')} on {prov.get('host', '?')}) into {out}")
-    new = run_cube(CubeTest(**params), out=out, progress=False if args.no_progress else None, plots=False).summary
-    differ = [k for k in RERUN_KEYS if k in old and old[k] != new.get(k)]
-    a, b = read_curve(os.path.join(args.dir, "curve.csv")), read_curve(os.path.join(out, "curve.csv"))
-    same_curve = a.keys() == b.keys() and all(np.array_equal(a[k], b[k]) for k in a)
-    if not same_curve:
-        differ.append("curve.csv")
-    for k in differ[:10]:
-        print(f"  differs: {k}: {old.get(k)!r} then, {new.get(k)!r} now" if k != "curve.csv" else "  differs: curve.csv")
-    print("identical: the curve and every number of the summary" if not differ else
-          f"{len(differ)} difference(s)")
-    return 0 if not differ else EXIT_FAILED
-
-
 def cmd_run(args) -> int:
     from .cube import settings
     from .runner import run_cube
     from .specimen import SpecimenTest
 
-    test = SpecimenTest.from_file(args.file, settings(args.set))
+    overrides = settings(args.set)
+    if args.threads is not None:
+        overrides["threads"] = args.threads
+    test = SpecimenTest.from_file(args.file, overrides)
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
+    if args.restart and finished(args.out):
+        return 0
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
-                      checkpoint_every=args.checkpoint_every, restart=args.restart)
+                      checkpoint_every=args.checkpoint_every, restart=args.restart,
+                      checkpoint_seconds=_checkpoint_seconds(args))
     return report_run(result, args)
 
 
 def _output_options(p: argparse.ArgumentParser) -> None:
     p.add_argument("--checkpoint-every", type=int, default=0, metavar="ROWS",
                    help="write checkpoint.npz (the whole state) every ROWS curve rows; 0: never")
+    p.add_argument("--checkpoint-minutes", type=float, default=10.0, metavar="M",
+                   help="also every M minutes of wall time, and at SIGTERM or Ctrl-C (0: not on the clock); "
+                        "removed when the run is finished")
     p.add_argument("--snapshots", default="", metavar="STRAINS",
                    help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
                         "(comma-separated; the end state is always written)")
@@ -214,6 +210,8 @@ def build_parser() -> argparse.ArgumentParser:
     f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
     f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
+    f.add_argument("--threads", type=int, default=None, metavar="T",
+                   help="OpenMP threads, over the file's run.threads (0: OMP_NUM_THREADS if set, else all cores)")
     f.add_argument("--restart", action="store_true",
                    help="continue the run of --out's checkpoint.npz, bit for bit (the same file and --set)")
     _output_options(f)
@@ -279,8 +277,18 @@ def main(argv=None) -> int:
         return EXIT_FAILED
     except KeyboardInterrupt as e:
         how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
-        print(f"ldem {args.command}: {how} (rows so far are kept in the output folder)", file=sys.stderr)
+        print(f"ldem {args.command}: {how} (rows so far are kept in the output folder){_how_to_continue(args)}",
+              file=sys.stderr)
         return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)
+
+
+def _how_to_continue(args) -> str:
+    out = getattr(args, "out", None)
+    if not out or not os.path.exists(os.path.join(out, "checkpoint.npz")):
+        return ""
+    if args.command == "cube":
+        return f"; continue with: ldem cube --restart {out}"
+    return f"; continue with: ldem run {args.file} --out {out} --restart" + "".join(f" --set {s}" for s in args.set)
 
 
 def console() -> None:

@@ -16,7 +16,7 @@ class ProgressBar:
 
     def __init__(self, final_strain: float, enabled=None, energy_tolerance: float = 0.01):
         self._bar, self._peak, self._final = None, 0.0, final_strain
-        self._tol, self._work, self._residual = energy_tolerance, 0.0, 0.0
+        self._tol, self._energy, self._residual = energy_tolerance, 0.0, 0.0
         if _enabled(enabled):
             from tqdm import tqdm
             self._bar = tqdm(total=1000, unit="‰", desc="strain", file=sys.stderr,
@@ -34,15 +34,16 @@ class ProgressBar:
 
     def balance(self, row: dict) -> float:
         """The energy balance error so far, as the summary computes it: the
-        largest |W - K - E - F - D| over the rows, over the largest W."""
-        self._work = max(self._work, row["external_work_J"])
-        residual = row["external_work_J"] - (row["kinetic_J"] + row["elastic_J"] + row["fracture_J"]
-                                             + row["damping_J"])
+        largest |W - K - E - F - D| over the rows, over the largest energy in
+        play (W, or K + E + F + D where it is larger)."""
+        total = row["kinetic_J"] + row["elastic_J"] + row["fracture_J"] + row["damping_J"]
+        self._energy = max(self._energy, row["external_work_J"], total)
+        residual = row["external_work_J"] - total
         self._residual = max(self._residual, abs(residual))
         return self.error()
 
     def error(self) -> float:
-        return self._residual / self._work if self._work > 0 else 0.0
+        return self._residual / self._energy if self._energy > 0 else 0.0
 
     def close(self) -> None:
         if self._bar is not None:

@@ -6,6 +6,7 @@ a file, its line. Geometry only: the lattice itself is built in C++
 """
 from __future__ import annotations
 
+import difflib
 import math
 import os
 import re
@@ -51,7 +52,9 @@ class Where:
 def check_keys(table: dict, allowed: set, where: Where, prefix: str) -> None:
     for k in table:
         if k not in allowed:
-            raise where(f"{prefix}{k}", f"unknown key (expected one of {', '.join(sorted(allowed))})")
+            near = difflib.get_close_matches(str(k), sorted(allowed), n=1)
+            hint = f"did you mean '{near[0]}'? " if near else ""
+            raise where(f"{prefix}{k}", f"unknown key ({hint}expected one of {', '.join(sorted(allowed))})")
 
 
 def named(value, options) -> bool:
@@ -86,6 +89,8 @@ def module_mask(shape: dict, where: Optional[Where] = None):
     """(L0, (nx, ny, nz), mask[nx, ny, nz] bool) of a [shape] table."""
     where = where or Where()
     kind = shape.get("kind")
+    # A misspelt key first: `knd = "box"` is that, more than a missing kind.
+    check_keys(shape, set().union(*_SHAPE_KEYS.values(), {"kind", "L0"}), where, "shape.")
     if not named(kind, _SHAPE_KEYS):
         raise where("shape.kind", f"must be one of {', '.join(_SHAPE_KEYS)} (got {kind!r})")
     check_keys(shape, _SHAPE_KEYS[kind] | {"kind", "L0"}, where, "shape.")

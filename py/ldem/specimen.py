@@ -243,7 +243,7 @@ class SpecimenTest:
         self.description, self.path = description, path
         self.build = Build(description, Where(text, path), overrides)
         self.overrides = dict(overrides or {})
-        for k in ("final_strain", "energy_tolerance", "seed", "stop_at"):
+        for k in ("final_strain", "energy_tolerance", "seed", "stop_at", "strain_rate", "eps_p"):
             setattr(self, k, self.build.params[k])
 
     @classmethod

@@ -56,7 +56,7 @@ py::dict checkpointDict(const Checkpoint& c) {
     d["softening"] = toNumpy(c.softening);
     const RunProgress& g = c.progress;
     const RunSummary& s = g.summary;
-    d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxWork,
+    d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxEnergy,
                                                g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
                                                s.fractureEnergy, c.servoU, c.servoUprev});
     d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
@@ -84,7 +84,7 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
     RunSummary& s = g.summary;
     c.time = sc.at(0), c.externalWork = sc.at(1), c.dampingWork = sc.at(2), c.speedupStart = sc.at(3);
     if (sc.size() > 10) c.servoU = sc.at(10), c.servoUprev = sc.at(11);  // older checkpoints: no servo
-    g.maxWork = sc.at(4), g.maxResidual = sc.at(5);
+    g.maxEnergy = sc.at(4), g.maxResidual = sc.at(5);
     s.peakStress = sc.at(6), s.strainAtPeak = sc.at(7), s.edgeStrainAtPeak = sc.at(8), s.fractureEnergy = sc.at(9);
     c.step = ct.at(0), g.lastCheck = ct.at(1), s.steps = ct.at(2);
     s.loadLoss = eventOf(d["load_loss"]), s.separation = eventOf(d["separation"]);

@@ -83,7 +83,7 @@ struct BalanceStats {
 };
 BalanceStats undampedElasticRun(double strainRate, double rampSteps, int steps) {
     Material m;
-    m.epsP = 1.0;  // nothing damages: eps_r is clamped to eps_p = 1
+    m.epsP = 1e-2;  // nothing damages (the largest eps_p allowed, far above the strains here)
     LoadingParams lp;
     lp.strainRate = strainRate;
     RunParams rp;

@@ -250,12 +250,13 @@ def test_restart_continues_bit_for_bit(cli, tmp_path):
                       checkpoint_every=700, observers=[stop_after_second_checkpoint])
     cut = json.loads((tmp_path / "cut" / "summary.json").read_text())
     assert cut["status"] == "interrupted"
+    state = np.load(tmp_path / "cut" / "checkpoint.npz")
+    assert int(state["counters"][0]) > 0 and "parameters" in state.files
     r = cli("cube", "--restart", str(tmp_path / "cut"), "--no-progress", "--no-plots")
     assert r.returncode == 0, r.stderr
+    assert not (tmp_path / "cut" / "checkpoint.npz").exists()  # finished: nothing a restart would run again
     whole, again = (json.loads((tmp_path / d / "summary.json").read_text()) for d in ("whole", "cut"))
     assert again["status"] == "done" and again["separated"]
     for k in RERUN_KEYS:
         assert again[k] == whole[k], k
     assert (tmp_path / "cut" / "curve.csv").read_bytes() == (tmp_path / "whole" / "curve.csv").read_bytes()
-    state = np.load(tmp_path / "cut" / "checkpoint.npz")
-    assert int(state["counters"][0]) > 0 and "parameters" in state.files

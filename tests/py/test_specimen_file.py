@@ -266,11 +266,11 @@ def test_ldem_run_restarts_bit_for_bit(cli, tmp_path, servo):
     with pytest.raises(KeyboardInterrupt):
         ldem.run_cube(test, out=str(tmp_path / "cut"), progress=False, plots=False, checkpoint_every=40,
                       observers=[interrupt])
+    r = cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--out", str(tmp_path / "cut"), "--restart",
+            *common)
+    assert r.returncode == 2 and "other parameters" in r.stderr
     r = cli("run", path, "--out", str(tmp_path / "cut"), "--restart", *common)
     assert r.returncode == 0, r.stderr
     whole, again = ((tmp_path / d / "curve.csv").read_text() for d in ("whole", "cut"))
     assert again == whole and len(whole.splitlines()) > 2 * 40 + 3
     assert "cmod_m" in whole.splitlines()[0]
-    r = cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--out", str(tmp_path / "cut"), "--restart",
-            *common)
-    assert r.returncode == 2 and "other parameters" in r.stderr

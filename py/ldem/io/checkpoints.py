@@ -74,8 +74,17 @@ class Checkpoints:
         self.rows += 1
         now = time.monotonic()
         if (self.every and self.rows % self.every == 0) or (self.seconds and now - self.last >= self.seconds):
-            write_checkpoint(self.path, self.sim.checkpoint(), self.parameters, self.wall_before + now - self.start)
-            self.last = now
+            self.write()
+
+    def write(self) -> None:
+        """checkpoint.npz of the record being observed (also at a SIGTERM or SIGINT: ldem.runner)."""
+        self.last = now = time.monotonic()
+        write_checkpoint(self.path, self.sim.checkpoint(), self.parameters, self.wall_before + now - self.start)
+
+    def finish(self, result) -> None:
+        """The run is finished: no state left that --restart would silently run again."""
+        with contextlib.suppress(FileNotFoundError):
+            os.remove(self.path)
 
 
 def _checkpoint_writer(run) -> Checkpoints:

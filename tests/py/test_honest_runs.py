@@ -1,0 +1,158 @@
+"""Runs that cannot fool their reader (issue 29): an energy balance that is
+honest when energy appears without work, a drive too fast to be quasi-static
+refused or flagged, parameters beyond physical sense refused with the reason,
+threads as OpenMP users expect, messages that name the real problem."""
+import json
+import os
+import signal
+import subprocess
+import time
+
+import pytest
+
+import ldem
+from conftest import LDEM_SCRIPT, ROOT, subprocess_env
+
+SMALL = ["--size", "0.04", "--no-progress", "--no-plots"]
+
+
+def _one_line_exit_2(r, message):
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and message in lines[0], r.stderr
+    assert "Traceback" not in r.stderr
+
+
+def test_a_drive_that_jumps_past_the_elastic_branch_is_refused(cli, tmp_path):
+    """The issue's run: 1e12 /s moves the drive by 2e10 eps_p of the gauge in a
+    step; it ran one step, broke 193 bars without any work and said 'done'."""
+    out = tmp_path / "sr"
+    r = cli("cube", *SMALL, "--final-strain", "1e-3", "--strain-rate", "1e12", "--out", str(out))
+    _one_line_exit_2(r, "strain_rate 1e+12 1/s moves the drive by")
+    assert "quasi-static loading needs a strain rate far below" in r.stderr
+    assert os.listdir(out) == []  # refused before any file is written
+
+
+def test_energy_without_work_is_an_error_of_one():
+    """The same jump through the core alone (no refusal): the bars dissipate
+    fracture energy while the external work is still 0. The balance is then
+    |W - (K + E + F + D)| over the largest energy in play: exactly 1, flagged;
+    it used to read 0 (a normalisation by the zero work)."""
+    sim = ldem.CubeTest(size=0.04, strain_rate=1e12, final_strain=1e-3, threads=1).simulation()
+    rows = []
+    s = sim.run(lambda p: rows.append((p.external_work, p.fracture)) is None)
+    assert rows[-1][0] == 0.0 and rows[-1][1] > 0.01  # J: fracture energy out of no work
+    assert s.energy_balance_error == 1.0 and s.energy_error
+
+
+def test_a_run_too_fast_for_quasi_static_is_flagged(cli, tmp_path):
+    """0.04 m at 2 /s: the kinetic energy at the peak is 2.3% of the external
+    work (measured), above the 1% limit: summary.json and the terminal say so,
+    the run still exits 0. At 0.5 /s it is 0.55%: not flagged."""
+    fast, slow = tmp_path / "fast", tmp_path / "slow"
+    r = cli("cube", *SMALL, "--strain-rate", "2", "--stop-at", "load_loss", "--out", str(fast))
+    assert r.returncode == 0, r.stderr
+    assert "warning: not quasi-static: the kinetic energy at the peak is 2.3% of the external work" in r.stderr
+    q = json.loads((fast / "summary.json").read_text())["quasi_static"]
+    assert q["flagged"] and 0.015 < q["kinetic_over_work_at_peak"] < 0.04 and q["kinetic_limit"] == 0.01
+    assert 0.03 < q["drive_step_over_eps_p"] < 0.06  # 2 /s x 1.31e-6 s / 6.3e-5
+    r = cli("cube", *SMALL, "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(slow))
+    assert r.returncode == 0 and "quasi-static" not in r.stderr, r.stderr
+    q = json.loads((slow / "summary.json").read_text())["quasi_static"]
+    assert not q["flagged"] and 0.002 < q["kinetic_over_work_at_peak"] < 0.01
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--zeta", "1e9"], "zeta must be in [0, 10] (got 1e+09)"),  # ran to a peak of 2e-28 MPa
+    (["--zeta", "10.5"], "zeta must be in [0, 10] (got 10.5)"),
+    (["--eps-p", "1e9"], "eps_p must be in (0, 0.01] (got 1e+09)"),  # every bar made perfectly brittle
+    (["--eps-p", "0.011"], "eps_p must be in (0, 0.01] (got 0.011)"),
+    (["--seed", "99999999999999999999"], "seed is out of range: a whole number from 0 to 9223372036854775807 "
+                                         "(got 1e+20)"),
+])
+def test_values_beyond_physical_sense_are_one_line_and_exit_2(cli, tmp_path, args, message):
+    _one_line_exit_2(cli("cube", *SMALL, "--out", str(tmp_path / "o"), *args), message)
+
+
+def test_help_says_what_each_new_bound_protects(cli):
+    text = " ".join(cli("cube", "--help").stdout.split())
+    assert "at most 10: above, the damping forces, not the bars, carry the load" in text
+    assert "at most 1%: concrete's is ~1e-4, and the lattice's geometry is that of small strains" in text
+    assert "OMP_NUM_THREADS if set" in text
+
+
+@pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores to tell 1 thread from all")
+def test_threads_0_honours_omp_num_threads(tmp_path):
+    """threads=0 (the default): OMP_NUM_THREADS=1 runs on one thread, not on all cores."""
+    runs = {}
+    for env in ("1", None):
+        out = tmp_path / f"t{env}"
+        extra = {} if env is None else {"OMP_NUM_THREADS": env}
+        base = {k: v for k, v in subprocess_env(**extra).items() if env is not None or k != "OMP_NUM_THREADS"}
+        r = subprocess.run(["/usr/bin/python3", LDEM_SCRIPT, "cube", *SMALL, "--final-strain", "1e-4", "--out",
+                            str(out)], capture_output=True, text=True, env=base, timeout=300)
+        assert r.returncode == 0, r.stderr
+        runs[env] = json.loads((out / "summary.json").read_text())["threads"]
+    assert runs == {"1": 1, None: os.cpu_count()}
+
+
+def _small_cube_file(tmp_path, edit=lambda t: t):
+    text = open(os.path.join(ROOT, "examples", "cube_uniform.toml")).read()
+    text = (text.replace("size = [0.12, 0.12, 0.12]", "size = [0.04, 0.04, 0.04]")
+            .replace("area = 0.0144 ", "area = 0.0016 ").replace("gauge_length = 0.12 ", "gauge_length = 0.04 "))
+    path = tmp_path / "small.toml"
+    path.write_text(edit(text))
+    return str(path)
+
+
+def test_ldem_run_takes_threads_and_says_which_stop_it_reached(cli, tmp_path):
+    out = tmp_path / "r"
+    r = cli("run", _small_cube_file(tmp_path), "--threads", "1", "--set", "final_strain=1e-4", "--no-progress",
+            "--no-plots", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    assert json.loads((out / "summary.json").read_text())["threads"] == 1
+    assert "stopped at the final strain (mean strain 1.00" in r.stdout and "before separation" in r.stdout
+    assert "NOT" not in r.stdout
+
+
+def test_an_unknown_key_is_named_before_a_missing_one(cli, tmp_path):
+    path = _small_cube_file(tmp_path, lambda t: t.replace('kind = "box"', 'knd = "box"'))
+    _one_line_exit_2(cli("run", path, "--out", str(tmp_path / "o")),
+                     "small.toml:6: shape.knd: unknown key (did you mean 'kind'? expected one of")
+
+
+@pytest.mark.parametrize("pair,message", [("seed=abc", "--set seed: 'abc' is not an integer"),
+                                          ("zeta=x", "--set zeta: 'x' is not a number")])
+def test_set_says_what_a_value_is_not(cli, tmp_path, pair, message):
+    _one_line_exit_2(cli("run", _small_cube_file(tmp_path), "--set", pair, "--out", str(tmp_path / "o")), message)
+
+
+@pytest.mark.parametrize("signum,code", [(signal.SIGTERM, 143), (signal.SIGINT, 130)], ids=["SIGTERM", "SIGINT"])
+def test_a_killed_run_continues_bit_for_bit(cli, tmp_path, signum, code):
+    """Issue 29, item 1: `ldem cube` killed mid-run checkpoints at its next
+    record (by default, with no option), says how to continue, and --restart
+    ends with the curve.csv of a run never stopped, byte for byte; restarting
+    the finished run runs nothing."""
+    args = ["cube", "--size", "0.08", "--strain-rate", "0.1", "--final-strain", "2e-3", "--threads", "1",
+            "--no-progress", "--no-plots"]
+    whole, cut = tmp_path / "whole", tmp_path / "cut"
+    assert cli(*args, "--out", str(whole)).returncode == 0
+    p = subprocess.Popen(["/usr/bin/python3", LDEM_SCRIPT, *args, "--out", str(cut)], stdout=subprocess.PIPE,
+                         stderr=subprocess.PIPE, text=True, env=subprocess_env(),
+                         preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))  # a background shell ignores it
+    rows = lambda: len((cut / "curve.csv").read_text().splitlines()) if (cut / "curve.csv").exists() else 0  # noqa
+    deadline = time.monotonic() + 120
+    while rows() < 30 and p.poll() is None and time.monotonic() < deadline:
+        time.sleep(0.02)
+    p.send_signal(signum)
+    _, err = p.communicate(timeout=120)
+    assert p.returncode == code, err
+    assert err.strip().endswith(f"continue with: ldem cube --restart {cut}"), err
+    assert json.loads((cut / "summary.json").read_text())["status"] == "interrupted"
+    r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
+    assert r.returncode == 0, r.stderr
+    assert (cut / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
+    assert json.loads((cut / "summary.json").read_text())["status"] == "done"
+    assert not (cut / "checkpoint.npz").exists()
+    r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
+    assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to continue"
