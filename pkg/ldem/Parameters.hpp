@@ -43,7 +43,13 @@
     X(double, epsP, "eps_p", 6.3e-5, "", Domain::openClosed(0, 1e-2),                                         \
       "critical strain of a bar (end of the elastic branch); at most 1%: concrete's is ~1e-4, and the lattice's "  \
       "geometry is that of small strains")                                                                     \
-    X(double, ca, "c_a", 0.1385, "", Domain::positive(), "fracture-area coefficient c_a")
+    X(double, ca, "c_a", 0.1385, "", Domain::positive(), "fracture-area coefficient c_a")                    \
+    X(SofteningLaw, law, "law", SofteningLaw::Hillerborg, "", Domain::choices({"hillerborg", "bilinear"}),     \
+      "softening law of a bar: Hillerborg's triangle, or bilinear (kink_stress, Gf_ratio; fib MC2010)")         \
+    X(double, kinkStress, "kink_stress", 0.2, "", Domain::openClosed(0, 1),                                   \
+      "bilinear law: force at the kink over the peak force (MC2010: 0.2)")                                      \
+    X(double, GfRatio, "Gf_ratio", 0.625, "", Domain::openClosed(0, 1),                                       \
+      "bilinear law: G_f/G_F, the share of the fracture energy under the initial line (MC2010: 0.625; 1: the triangle)")
 
 #define LDEM_LOADING_PARAMETERS(X)                                                                           \
     X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),            \

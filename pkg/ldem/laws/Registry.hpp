@@ -9,11 +9,12 @@
 
 #include "ldem/Lattice.hpp"
 #include "ldem/Material.hpp"
+#include "ldem/laws/Bilinear.hpp"
 #include "ldem/laws/Hillerborg.hpp"
 
 namespace ldem {
 
-using BarLaws = std::variant<HillerborgLaw>;
+using BarLaws = std::variant<HillerborgLaw, BilinearLaw>;
 
 // Law number `which` of BarLaws for the bars of lat, of material m, with fracture energies Gf.
 template <std::size_t I = 0>
