@@ -34,6 +34,7 @@ def save(fig, path: str) -> None:
 
 # The study's colours; its cyan darkened (darkcyan) to stand out on white, even drawn faint.
 STATE_COLOURS = {UNDAMAGED: "darkcyan", DAMAGED: "orange", BROKEN: "red"}
+STATE_ALPHA = {UNDAMAGED: 0.55, DAMAGED: 1.0, BROKEN: 1.0}  # undamaged bars faint: the crack stands out
 STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 
@@ -154,10 +155,11 @@ def draw_slice(ax, seg, state) -> dict:
         return {st: 0 for st in (UNDAMAGED, DAMAGED, BROKEN)}
     modules = np.ptp(seg[:, :, 0]) / np.linalg.norm(seg[:, 1] - seg[:, 0], axis=1).max()
     thin = min(1.0, np.sqrt(12.0 / max(modules, 1.0)))
-    for st, lw, alpha in ((UNDAMAGED, 0.6, 0.55), (DAMAGED, 1.2, 1.0), (BROKEN, 1.8, 1.0)):
+    for st, lw in ((UNDAMAGED, 0.6), (DAMAGED, 1.2), (BROKEN, 1.8)):
         sel = state == st
         counts[st] = int(sel.sum())
-        ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw * thin, alpha=alpha))
+        ax.add_collection(LineCollection(seg[sel], colors=STATE_COLOURS[st], linewidths=lw * thin,
+                                         alpha=STATE_ALPHA[st]))
     ax.set_aspect("equal")
     ax.autoscale()
     ax.grid(False)
@@ -167,7 +169,8 @@ def draw_slice(ax, seg, state) -> dict:
 
 def state_handles(counts=None) -> list:
     """Legend entries of the three damage states (with their counts, if given)."""
-    return [Line2D([], [], color=STATE_COLOURS[s], lw=2, label=STATE_NAMES[s] + (f" ({counts[s]})" if counts else ""))
+    return [Line2D([], [], color=STATE_COLOURS[s], alpha=STATE_ALPHA[s], lw=2,
+                   label=STATE_NAMES[s] + (f" ({counts[s]})" if counts else ""))
             for s in (UNDAMAGED, DAMAGED, BROKEN)]
 
 
