@@ -133,7 +133,7 @@ def energy_plot(curve, summary: dict, strain_label: str = STRAIN_LABEL):
     top = max(c["external_work_J"][inside].max(), 1e-30)
     each.set(yscale="log", ylim=(1e-5 * top, 2 * top), xlim=(0.0, x_max), xlabel=strain_label, ylabel="energy [J]",
              title="each energy" + (f", to {ZOOM:g} x the strain at load loss" if x_max < x[-1] else ""))
-    each.legend(loc="lower right", ncol=2)
+    each.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=5)  # below: clear of the curves
     fig.suptitle(f"energy budget (balance error {summary.get('energy_balance_error', float('nan')):.2e})"
                  + energy_flag(summary))
     return fig
