@@ -1,6 +1,6 @@
 """The example gallery of README: runs every examples/*.toml (unless its run
 folder holds its finished run already: a study's case, ldem.study.Named) and puts its curve and its crack picture side by side
-in doc/gallery/NAME.png.
+in doc/gallery/NAME.png, at their own scale: one font size across the panels.
 
     /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1] [--only NAME ...]
 """
@@ -13,12 +13,31 @@ import matplotlib
 matplotlib.use("Agg")
 import matplotlib.image  # noqa: E402
 import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
 
 import ldem  # noqa: E402
+import ldem.plots  # noqa: E402,F401  (the figures' style, whose dpi the gallery keeps)
 from ldem import study  # noqa: E402
 from ldem.runner import default_writers  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+
+
+def side_by_side(pictures, title: str, path: str) -> None:
+    """The pictures side by side at their own scale, one pixel for one (the same
+    dpi as the run's figures: one font size across the panels), under a title."""
+    height = max(p.shape[0] for p in pictures)
+    padded = [np.pad(p[:, :, :3], (((height - p.shape[0]) // 2, (height - p.shape[0] + 1) // 2), (0, 0), (0, 0)),
+                     constant_values=1.0) for p in pictures]  # centred, on white
+    strip = np.hstack(padded)
+    dpi, title_px = plt.rcParams["savefig.dpi"], 40
+    fig = plt.figure(figsize=(strip.shape[1] / dpi, (strip.shape[0] + title_px) / dpi), dpi=dpi)
+    ax = fig.add_axes((0.0, 0.0, 1.0, strip.shape[0] / (strip.shape[0] + title_px)))
+    ax.imshow(strip, interpolation="none")
+    ax.axis("off")
+    fig.suptitle(title, y=1.0 - 0.25 * title_px / (strip.shape[0] + title_px), va="top")
+    fig.savefig(path, dpi=dpi, bbox_inches=None)
+    plt.close(fig)
 
 
 def main() -> None:
@@ -36,16 +55,9 @@ def main() -> None:
     for t, s in zip(tests, study.run_cases(tests, args.runs, progress=False, log=lambda line: None)):
         name, run = t.name, study.case_dir(args.runs, t)
         pictures = [matplotlib.image.imread(os.path.join(run, p)) for p in ("curve.png", "cracks.png")]
-        ratios = [p.shape[1] / p.shape[0] for p in pictures]  # side by side at the same height
-        fig, axes = plt.subplots(1, 2, figsize=(4.2 * sum(ratios), 4.6), gridspec_kw={"width_ratios": ratios})
-        for ax, picture in zip(axes, pictures):
-            ax.imshow(picture)
-            ax.axis("off")
-        fig.suptitle(f"examples/{name}.toml: peak {s['peak_stress_MPa']:.3f} MPa, {s['n_bars']} bars, "
-                     f"{s['wall_s']:.0f} s on {s['threads']} thread(s)", fontsize=10)
-        fig.tight_layout()
-        fig.savefig(os.path.join(args.out, name + ".png"), dpi=110)
-        plt.close(fig)
+        title = (f"examples/{name}.toml: peak {s['peak_stress_MPa']:.3f} MPa, {s['n_bars']} bars, "
+                 f"{s['wall_s']:.0f} s on {s['threads']} thread(s)")
+        side_by_side(pictures, title, os.path.join(args.out, name + ".png"))
         print(f"{name}: peak {s['peak_stress_MPa']:.4f} MPa at strain {s['strain_at_peak']:.3e}, stop "
               f"{s['stop_reason']}, energy balance error {s['energy_balance_error']:.1e}, {s['wall_s']:.0f} s")
 

@@ -1,8 +1,10 @@
 """Opens an ldem run in ParaView and shows the crack: every bar, warped by its
 displacement and coloured by damage state (0 undamaged, 1 damaged, 2 broken),
-with the broken bars drawn thick on top; saves a picture of the last frame.
+with the broken bars drawn thick on top; saves a picture of the last frame,
+titled (the run, its mean strain, the warp factor) with its colour legend.
 
     pvpython scripts/paraview_crack.py out/cube            # writes out/cube/crack_paraview.png
+    pvpython scripts/paraview_crack.py out/cube 50         # displacements magnified 50 times
     xvfb-run -a -s "-noreset" pvbatch scripts/paraview_crack.py out/cube   # no display (a server, CI)
     paraview --script=scripts/paraview_crack.py            # (edit RUN below) to explore interactively
 
@@ -11,16 +13,33 @@ without a display); the run folder must hold bars.pvd and crack.pvd (ldem cube
 and ldem run write them; --snapshots adds frames at chosen mean strains). The
 camera looks along +y with z up: the side of a specimen pulled or bent along z.
 """
+import json
 import os
 import sys
 
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, GetColorTransferFunction,  # noqa
-                             PVDReader, Render, ResetCamera, SaveScreenshot, Show, WarpByVector)
+                             GetScalarBar, PVDReader, Render, ResetCamera, SaveScreenshot, Show, Text,
+                             WarpByVector)
 
 RUN = sys.argv[1] if len(sys.argv) > 1 else os.path.join("out", "cube")
 SCALE = float(sys.argv[2]) if len(sys.argv) > 2 else 1.0  # displacement magnification
 
+
+
+def run_title(run: str) -> str:
+    """The run's title, from its summary.json: a specimen's own, or the cube's size, load and seed."""
+    try:
+        with open(os.path.join(run, "summary.json")) as f:
+            p = json.load(f)["parameters"]
+    except (OSError, ValueError, KeyError):
+        return run
+    if "description" in p:
+        return f"{p['description'].get('title', run)}, seed {p['parameters']['seed']}"
+    return f"{p['size']:g} m cube, {p['load']}, seed {p['seed']}"
+
+
 view = GetActiveViewOrCreate("RenderView")
+view.ViewSize = [1200, 1000]  # the picture's: its fonts at the sizes given below
 for name, width in (("bars.pvd", 1.0), ("crack.pvd", 4.0)):
     reader = PVDReader(FileName=os.path.join(RUN, name))
     warp = WarpByVector(Input=reader, Vectors=["POINTS", "displacement"], ScaleFactor=SCALE)
@@ -31,9 +50,17 @@ lut = GetColorTransferFunction("damage_state")
 lut.InterpretValuesAsCategories = 1
 lut.Annotations = ["0", "undamaged", "1", "damaged", "2", "broken"]
 lut.IndexedColors = [0.0, 1.0, 1.0, 1.0, 0.65, 0.0, 1.0, 0.0, 0.0]  # the study's cyan, orange, red
+display.SetScalarBarVisibility(view, True)  # the colour legend
+bar = GetScalarBar(lut, view)
+bar.Title, bar.ComponentTitle, bar.TitleFontSize, bar.LabelFontSize = "damage state", "", 22, 20
 scene = GetAnimationScene()
 scene.UpdateAnimationUsingDataTimeSteps()
 scene.AnimationTime = scene.EndTime
+strain = reader.TimestepValues  # the last frame's mean strain (one frame: a number, not a list)
+strain = strain[-1] if isinstance(strain, (list, tuple)) or hasattr(strain, "__len__") else strain
+title = Text(Text=f"{run_title(RUN)}: mean strain {strain:.3g}\ndisplacements x {SCALE:g} (warp factor)")
+label = Show(title, view)
+label.WindowLocation, label.FontSize, label.Justification = "Upper Center", 22, "Center"
 view.CameraPosition, view.CameraFocalPoint, view.CameraViewUp = [0, -1, 0], [0, 0, 0], [0, 0, 1]
 view.OrientationAxesVisibility = 1
 ResetCamera()

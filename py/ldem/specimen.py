@@ -14,7 +14,8 @@ The file (examples/ has one per classic test; README "Specimens from a file"):
                  (the drive's weight grows linearly from 0 to its value across the group along x)
     [measure]    support, loaded (group names), area [m^2], gauge_length [m],
                  probes = {cmod = {a = [..], b = [..], direction = "x"}},
-                 control = "cmod" (a servo holds the probe to loading.opening_rate [m/s])
+                 control = "cmod" (a servo holds the probe to loading.opening_rate [m/s]),
+                 stress_label, strain_label (the figures' axes: "F/(bD) [MPa]", "deflection/D [-]")
     [material], [loading], [run]: any parameter of `ldem cube --help` in those groups
 
 Stress = reactions of the support group along the drive's direction / area;
@@ -40,7 +41,7 @@ _PARAMS = {p["name"]: p for p in PARAMETERS}
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
-_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control"}
+_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control", "stress_label", "strain_label"}
 
 
 def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
@@ -172,6 +173,10 @@ class Build:
         out["mean_drive_weight"] = float(weight[along].sum() / len(self.groups[out["loaded"]]))
         out["area"] = number(m.get("area"), where, "measure.area")
         out["gauge_length"] = number(m.get("gauge_length"), where, "measure.gauge_length")
+        for k in ("stress_label", "strain_label"):  # what stress and strain are for this specimen
+            if not isinstance(m.get(k, ""), str):
+                raise where(f"measure.{k}", f"must be a text, an axis label (got {m[k]!r})")
+            out[k] = m.get(k, "")
         probes = m.get("probes", {})
         if not isinstance(probes, dict):
             raise where("measure.probes", "must be a table of probes by name")
@@ -269,6 +274,10 @@ class SpecimenTest:
 
     def describe(self) -> str:
         return f"{self.build.title}, seed {self.seed}"
+
+    def axis_labels(self) -> tuple:
+        """(strain, stress) axis labels of the figures: measure.strain_label and stress_label ("": none)."""
+        return self.build.measures["strain_label"], self.build.measures["stress_label"]
 
     def parameters(self) -> dict:
         """What reproduces the run: the description and the parameters it gives."""

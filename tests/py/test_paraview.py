@@ -29,3 +29,5 @@ def test_paraview_script_shows_the_crack(cli, tmp_path):
     rgb = picture(out / "crack_paraview.png")
     # The study's colours as ParaView draws them: undamaged bars cyan, the broken ones red.
     assert colour_share(rgb, (0.0, 1.0, 1.0)) > 0.002 and colour_share(rgb, (1.0, 0.0, 0.0)) > 0.002
+    # The title (the run, its mean strain, the warp factor), white text in the band above the specimen.
+    assert colour_share(rgb[:rgb.shape[0] // 12], (1.0, 1.0, 1.0)) > 0.005  # measured 0.02 on a 0.12 m cube

@@ -174,6 +174,7 @@ def _file(tmp_path, text, base="cube_uniform"):
     (lambda s: s + "\n[loading]\nload = 'triangular'\n", "loading.load: a cube-test parameter"),
     (lambda s: s + "\n[run]\nseed = 'one'\n", "run.seed: must be int"),
     (lambda s: s.replace("area = 0.0144", "area = -1"), "measure.area: must be positive"),
+    (lambda s: s.replace("area = 0.0144", "area = 0.0144\nstress_label = 2"), "measure.stress_label: must be a text"),
     (lambda s: s.replace("[measure]", "[measure\n"), "not valid TOML"),
 ])
 def test_a_bad_file_is_one_line_naming_the_key_and_exit_2(cli, tmp_path, change, key):

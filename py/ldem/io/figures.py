@@ -36,7 +36,7 @@ class Figures:
             plots.energy_figure(result, path("energies"))
         piece = central_slice(result.sim)
         if piece is not None:
-            plots.crack_figure_from_slice(*piece, path("cracks"), title=f"{result.test.describe()}: "
+            plots.crack_figure_from_slice(*piece, path("cracks"), title=f"{result.test.describe()}\n"
                                           f"mean strain {result.curve['mean_strain'][-1]:.2e}")
 
 

@@ -59,7 +59,8 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0) ->
                    "supports": {"union": ["left", "right"]},
                    "load": {"box": {"min": [mid - 0.5 * L0, 0.0, D], "max": [mid + 0.5 * L0, B, D]},
                             "drive": {"z": -1.0}}},
-        "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [N]
+        "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [MN]
+                    "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
                     "probes": {"cmod": {"a": [mid - 0.5 * L0, 0.0, 0.0], "b": [mid + 0.5 * L0, 0.0, 0.0],
                                         "direction": "x"}}},
         "material": dict(MATERIAL, eps_p=eps_p, Gf_cv=gf_cv), "loading": {"strain_rate": 0.1},
