@@ -10,7 +10,7 @@ def test_damaged_case_starts_past_the_peak_and_reports_both_speeds(cli):
     # have softened and broken, and their rows are on the law's slow path.
     assert b["damaged_stop_reason"] == "load_lost"
     assert b["damaged_from_step"] > 20 + 10
-    assert 0 <= b["damaged_stress_over_peak"] < 0.5
+    assert abs(b["damaged_stress_over_peak"]) < 0.5  # (it rings around zero)
     assert b["broken_bar_share"] > 0 and b["damaged_bar_share"] > b["broken_bar_share"]
     assert 0 < b["damaged_softening_row_share"] <= b["damaged_softening_row_share_after"] <= 1
     assert b["ns_per_bar_step"] > 0 and b["damaged_ns_per_bar_step"] > 0
