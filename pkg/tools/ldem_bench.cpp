@@ -2,11 +2,14 @@
 // uniform loading), or of the cylinder of diameter and height N modules cut
 // from it (--shape cylinder: a clipped lattice), and print one line of JSON. `ldem bench` runs it; it is a
 // separate program so that its peak resident memory is the run's own, with
-// no interpreter around it. Under mpirun each rank times its slab (Slab.hpp):
+// no interpreter around it. With --damaged it then pulls the same cube past
+// its peak, to load loss (run() with stop_at = load_loss), and times the same
+// steps from there: rows with softening bars leave the fast elastic path, so
+// this is the speed of the part of a run that matters. Under mpirun each rank times its slab (Slab.hpp):
 // the time per step is the whole lattice's, the memory and the bytes sent
 // per step are those of the rank that uses the most.
 //
-//   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5] [--shape box|cylinder]
+//   ldem-bench --modules 48 --steps 200 --threads 2 [--repeats 5] [--shape box|cylinder] [--damaged 1]
 //   mpirun -np 2 ldem-bench --modules 48 --steps 200 --threads 1
 #include <algorithm>
 #include <chrono>
@@ -16,6 +19,7 @@
 #include <memory>
 #include <new>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "ldem/Comm.hpp"
@@ -32,6 +36,45 @@ double median(std::vector<double> v) {
     const std::size_t n = v.size();
     return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
+// Wall time of one whole step, averaged over `steps` steps [s].
+double secondsPerStep(ldem::Simulation& sim, int steps) {
+    const auto t = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) sim.step();
+    return seconds(t) / steps;
+}
+// Rows of bars on the law's slow path (some bar softening or broken), over all ranks.
+std::int64_t softeningRows(const ldem::Simulation& sim, const ldem::Comm& comm) {
+    std::int64_t rows = 0;
+    std::visit([&](const auto& law) {
+        for (std::uint8_t r : law.softeningRows()) rows += r;
+    }, sim.law());
+    return comm.sum(rows);
+}
+// The damaged case: the cube pulled to load loss, then `steps` steps timed
+// `repeats` times from there. Its JSON fields, each starting with a comma.
+std::string damagedCase(ldem::Simulation& sim, int steps, int repeats, double elasticStep, const ldem::Comm& comm) {
+    const auto t0 = std::chrono::steady_clock::now();
+    ldem::CurvePoint last;
+    const ldem::RunSummary s = sim.run([&](const ldem::CurvePoint& p) { return last = p, true; });
+    sim.advance();  // run() stops at a record, after its forces: the rest of that step
+    const double reach = seconds(t0);
+    const double bars = double(sim.totalBars());
+    const double rows = double(comm.sum(std::int64_t(sim.lattice().barRows.size())));
+    const double softening = double(softeningRows(sim, comm));
+    std::vector<double> perStep;
+    for (int r = 0; r < repeats; ++r) perStep.push_back(secondsPerStep(sim, steps));
+    const double step = comm.max(median(perStep));
+    char json[512];
+    std::snprintf(json, sizeof json,
+                  ", \"damaged_stop_reason\": \"%s\", \"damaged_from_step\": %lld, \"damaged_stress_over_peak\": %.4f, "
+                  "\"damaged_softening_row_share\": %.4f, \"damaged_bar_share\": %.5f, \"broken_bar_share\": %.5f, "
+                  "\"damaged_softening_row_share_after\": %.4f, \"damaged_ns_per_bar_step\": %.4f, "
+                  "\"damaged_over_elastic\": %.3f, \"damaged_reach_s\": %.3f",
+                  s.stopReason.c_str(), (long long)last.step, last.stress / s.peakStress, softening / rows,
+                  double(last.damaged) / bars, double(last.broken) / bars, double(softeningRows(sim, comm)) / rows,
+                  step / bars * 1e9, step / elasticStep, reach);
+    return json;
+}
 // Peak resident memory of this process [bytes]: VmHWM, which starts afresh at
 // exec (getrusage's ru_maxrss would carry over the launching interpreter's).
 long peakResidentBytes() {
@@ -45,7 +88,7 @@ long peakResidentBytes() {
 }
 
 [[noreturn]] void usage(const char* msg) {
-    std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R] [--shape box|cylinder]\n", msg);
+    std::fprintf(stderr, "ldem-bench: error: %s\nusage: ldem-bench --modules N --steps S --threads T [--repeats R] [--shape box|cylinder] [--damaged 0|1]\n", msg);
     std::exit(2);
 }
 // Modules of an N^3 box whose centres lie within the cylinder of axis z and diameter N.
@@ -78,6 +121,7 @@ static int bench(int argc, char** argv, int& modules) {
     modules = 24;
     int steps = 200, threads = 0, repeats = 5;
     std::string shape = "box";
+    bool damaged = false;
     for (int a = 1; a < argc; ++a) {
         const std::string key = argv[a];
         if (a + 1 >= argc) usage(("missing value after " + key).c_str());
@@ -91,12 +135,14 @@ static int bench(int argc, char** argv, int& modules) {
         else if (key == "--steps") steps = value;
         else if (key == "--threads") threads = value;
         else if (key == "--repeats") repeats = value;
+        else if (key == "--damaged") damaged = value != 0;
         else usage(("unknown option " + key).c_str());
     }
     if (modules < 1 || steps < 1 || threads < 0 || repeats < 1) usage("values must be positive");
 
     ldem::RunParams run;
     run.threads = threads;
+    run.stopAt = ldem::StopAt::LoadLoss;  // the damaged case's run (the elastic timing calls step() alone)
     const ldem::Comm& comm = ldem::Comm::world();
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<ldem::Simulation> built;
@@ -121,13 +167,11 @@ static int bench(int argc, char** argv, int& modules) {
     double bytesPerStep = 0;
     for (int r = 0; r < repeats; ++r) {
         const std::int64_t sent = comm.bytesSent();
-        auto t = std::chrono::steady_clock::now();
-        for (int s = 0; s < steps; ++s) sim.step();
-        perStep.push_back(seconds(t) / steps);
+        perStep.push_back(secondsPerStep(sim, steps));
         bytesPerStep = double(comm.bytesSent() - sent) / steps;
         double tf = 0, ta = 0;
         for (int s = 0; s < 10; ++s) {
-            t = std::chrono::steady_clock::now();
+            auto t = std::chrono::steady_clock::now();
             sim.computeForces();
             tf += seconds(t);
             t = std::chrono::steady_clock::now();
@@ -137,7 +181,7 @@ static int bench(int argc, char** argv, int& modules) {
         forces.push_back(tf / 10), advance.push_back(ta / 10);
         // One separation test (union-find over the intact bars), the cost that
         // run() adds once per kSeparationCheckSteps steps after the peak.
-        t = std::chrono::steady_clock::now();
+        const auto t = std::chrono::steady_clock::now();
         volatile bool joined = sim.facesJoined();
         (void)joined;
         separation.push_back(seconds(t));
@@ -148,15 +192,17 @@ static int bench(int argc, char** argv, int& modules) {
     const double step = comm.max(median(perStep)), force = comm.max(median(forces)), adv = comm.max(median(advance));
     const double sep = comm.max(median(separation));
     const double rss = comm.max(double(peakResidentBytes())), sent = comm.max(bytesPerStep);
+    const std::string damagedFields = damaged ? damagedCase(sim, steps, repeats, step, comm) : "";
     if (comm.root())
         std::printf(
             "{\"shape\": \"%s\", \"modules\": %d, \"bars\": %lld, \"nodes\": %lld, \"steps\": %d, \"repeats\": %d, "
             "\"ranks\": %d, \"threads\": %d, \"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, "
             "\"ns_per_bar_integration\": %.4f, \"separation_check_share\": %.4f, \"setup_s\": %.3f, "
-            "\"peak_rss_bytes\": %.0f, \"bytes_per_bar\": %.2f, \"bytes_sent_per_rank_step\": %.0f}\n",
+            "\"peak_rss_bytes\": %.0f, \"bytes_per_bar\": %.2f, \"bytes_sent_per_rank_step\": %.0f%s}\n",
             shape.c_str(), modules, (long long)bars, (long long)nodes, steps, repeats, comm.size(), ldem::maxThreads(),
             step / bars * 1e9, force / bars * 1e9, adv / bars * 1e9,
-            sep / (ldem::Simulation::kSeparationCheckSteps * step), setup, rss, rss * comm.size() / bars, sent);
+            sep / (ldem::Simulation::kSeparationCheckSteps * step), setup, rss, rss * comm.size() / bars, sent,
+            damagedFields.c_str());
     ldem::mpiFinalize();
     return 0;
 }

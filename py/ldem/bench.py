@@ -25,4 +25,6 @@ def cmd_bench(args) -> int:
         raise ValueError("--threads must be >= 0")
     cmd = [bench_program(), "--modules", str(args.modules), "--steps", str(args.steps),
            "--threads", str(args.threads), "--repeats", str(args.repeats)]
+    if args.damaged:
+        cmd += ["--damaged", "1"]
     return subprocess.run(cmd).returncode

@@ -226,6 +226,8 @@ def build_parser() -> argparse.ArgumentParser:
     b.add_argument("--steps", type=int, default=200, metavar="S", help="steps per repetition")
     b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
     b.add_argument("--repeats", type=int, default=5, metavar="R", help="repetitions (the median is reported)")
+    b.add_argument("--damaged", action="store_true",
+                   help="then pull the cube to load loss and time the same steps from there (damaged_* fields)")
     b.set_defaults(func=cmd_bench)
 
     r = sub.add_parser("rerun", help="run a result's folder again from its summary.json and compare",
