@@ -113,6 +113,17 @@ def picture(path, min_side=300):
     return rgb
 
 
+def undamaged_on_white():
+    """The RGB an undamaged bar shows on white: ldem.plots draws it faint
+    (STATE_ALPHA) in its colour, so the pixel is alpha c + (1 - alpha) white."""
+    import matplotlib.colors
+
+    from ldem import plots
+
+    alpha = plots.STATE_ALPHA[plots.UNDAMAGED]
+    return tuple(alpha * np.array(matplotlib.colors.to_rgb(plots.STATE_COLOURS[plots.UNDAMAGED])) + 1 - alpha)
+
+
 def colour_share(rgb, colour, tol=0.15):
     """Fraction of the pixels within tol of colour (matplotlib's name or RGB)."""
     import matplotlib.colors

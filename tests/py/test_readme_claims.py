@@ -119,7 +119,8 @@ def test_cube_exits_130_on_sigint_and_keeps_rows(tmp_path):
         stop(proc)
     assert proc.returncode == 130, stderr
     assert stderr.strip().splitlines()[-1] == \
-        "ldem cube: interrupted (rows so far are kept in the output folder)", stderr
+        f"ldem cube: interrupted (rows so far are kept in the output folder); continue with: ldem cube --restart {out}", \
+        stderr
     assert "Traceback" not in stderr
     _, rows = read_rows(out / "curve.csv")
     assert len(rows) >= seen and np.all(np.diff(rows[:, 0]) == rows[1, 0] - rows[0, 0])
@@ -141,7 +142,8 @@ def test_sigterm_is_an_interruption_with_its_summary(tmp_path):
         stop(proc)
     assert proc.returncode == 128 + signal.SIGTERM, stderr
     assert stderr.strip().splitlines()[-1] == \
-        "ldem cube: terminated (SIGTERM) (rows so far are kept in the output folder)", stderr
+        "ldem cube: terminated (SIGTERM) (rows so far are kept in the output folder); " \
+        f"continue with: ldem cube --restart {out}", stderr
     s = json.loads((out / "summary.json").read_text())
     assert s["status"] == "interrupted" and s["stop_reason"] == "interrupted"
     _, rows = read_rows(out / "curve.csv")

@@ -21,8 +21,16 @@ TINY = dict(FAST, size=0.04, final_strain=0.02, threads=1)
 ])
 def test_a_run_writes_the_files_of_its_writers_and_no_others(tmp_path, writers, files):
     out = tmp_path / "run"
-    r = ldem.run_cube(ldem.CubeTest(**TINY), out=str(out), progress=False, writers=writers, checkpoint_every=5)
-    assert set(os.listdir(out)) == files
+    during = set()  # what the folder held while the run went (a checkpoint lives only then)
+
+    def look(row):
+        during.update(f for f in os.listdir(out) if not f.startswith("."))
+        return True
+
+    r = ldem.run_cube(ldem.CubeTest(**TINY), out=str(out), progress=False, writers=writers, checkpoint_every=5,
+                      observers=[look])
+    assert set(os.listdir(out)) == files - {"checkpoint.npz"}  # a finished run keeps no checkpoint
+    assert during | set(os.listdir(out)) == files
     assert io.read_summary(str(out / "summary.json"))["peak_stress_MPa"] == r.summary["peak_stress_MPa"]
     if "curve" in writers:  # the curve's rows are the run's
         assert len(io.read_curve(str(out / "curve.csv"))["step"]) == len(r.curve["step"])

@@ -82,7 +82,12 @@ class Named:
 
     def __init__(self, test, name: str, writers: Sequence[str] = CASE_WRITERS, folder: str = "cases"):
         self.test, self.name, self.writers, self.cases_folder = test, name, list(writers), folder
-        self.final_strain, self.energy_tolerance = test.final_strain, test.energy_tolerance
+
+    def __getattr__(self, attribute):
+        """Whatever else a runner asks (final_strain, strain_rate, eps_p, ...) is the test's."""
+        if attribute == "test" or attribute.startswith("__"):  # not set yet (unpickling): no recursion
+            raise AttributeError(attribute)
+        return getattr(self.test, attribute)
 
     def case_name(self) -> str:
         return self.name
