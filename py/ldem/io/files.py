@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import contextlib
 import os
+import platform
 
 
 @contextlib.contextmanager
@@ -33,7 +34,8 @@ def prepare_dir(path: str) -> None:
     """Creates the output folder and checks it is writable, before any computing."""
     try:
         os.makedirs(path, exist_ok=True)
-        probe = os.path.join(path, ".ldem-write-test")
+        # A name of this process's own: every MPI rank checks the same folder at once.
+        probe = os.path.join(path, f".ldem-write-test.{platform.node()}.{os.getpid()}")
         with open(probe, "w"):
             pass
         os.remove(probe)
