@@ -34,6 +34,13 @@ namespace ldem {
 
 enum class DamageState : unsigned char { Undamaged = 0, Damaged = 1, Broken = 2 };
 
+// The damage state of a bar whose law is elastic up to eps_p and carries no
+// tension from eps_r on, at damage kappa (the largest strain reached).
+inline DamageState damageState(double kappa, double epsP, double epsR) {
+    if (kappa >= epsR) return DamageState::Broken;
+    return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
+}
+
 // The stretch of a bar from its reference vector d0 (length L) and the
 // relative displacement du of its ends, without cancellation:
 //   n = l^2 - L^2 = 2 d0.du + du.du   =>   eps = (l - L)/L = n / ((l + L) L).

@@ -99,11 +99,6 @@ inline double bilinearDissipated(double kappa, double EA, double epsP, double sK
     return L * (area - 0.5 * F * kappa);
 }
 
-inline DamageState bilinearDamage(double kappa, double epsP, double epsR) {
-    if (kappa >= epsR) return DamageState::Broken;
-    return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
-}
-
 }  // namespace bilinear
 
 class BilinearLaw {
@@ -188,7 +183,7 @@ public:
         return bilinear::bilinearDissipated(epsR[b], EA, epsP, sK, epsK[b], epsR[b], L);
     }
     DamageState damage(std::int64_t b, double eps = 0) const {
-        return bilinear::bilinearDamage(bilinear::updateDamage(kappa[b], eps), epsP, epsR[b]);
+        return ldem::damageState(bilinear::updateDamage(kappa[b], eps), epsP, epsR[b]);
     }
     bool intact(std::int64_t b) const { return kappa[b] < epsR[b]; }
     std::int64_t clampedOwnedBars() const { return clamped_; }

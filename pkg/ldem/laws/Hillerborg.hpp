@@ -86,11 +86,6 @@ inline double dissipatedEnergy(double kappa, double EA, double epsP, double epsR
     return full * (kappa - epsP) / (epsR - epsP);
 }
 
-inline DamageState damageState(double kappa, double epsP, double epsR) {
-    if (kappa >= epsR) return DamageState::Broken;
-    return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
-}
-
 }  // namespace hillerborg
 
 class HillerborgLaw {
@@ -182,7 +177,7 @@ public:
         return hillerborg::triangleEnergy(EA, epsP, epsR[b], L);
     }
     DamageState damage(std::int64_t b, double eps = 0) const {
-        return hillerborg::damageState(hillerborg::updateDamage(kappa[b], eps), epsP, epsR[b]);
+        return ldem::damageState(hillerborg::updateDamage(kappa[b], eps), epsP, epsR[b]);
     }
     // A broken bar (kappa >= eps_r) carries no tension, ever again.
     bool intact(std::int64_t b) const { return kappa[b] < epsR[b]; }
