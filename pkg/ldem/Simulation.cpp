@@ -251,8 +251,8 @@ void Simulation::finishStep() {
 
 Checkpoint Simulation::checkpoint() const {
     if (lat_.isSlab()) throw std::logic_error("checkpoints of a run split over MPI ranks are not supported");
-    if (!progress_.pendingAdvance)
-        throw std::logic_error("a checkpoint is taken at a record, from run()'s observer");
+    if (!progress_.pendingAdvance && progress_.summary.stopReason.empty())
+        throw std::logic_error("a checkpoint is taken at a record: from run()'s observer, or once run() returned");
     Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_,
                  drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
     std::visit([&](const auto& law) {
@@ -283,6 +283,7 @@ void Simulation::restore(const Checkpoint& c) {
     servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
+    progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
     progress_.pendingAdvance = true;
 }
 

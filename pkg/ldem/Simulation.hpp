@@ -133,9 +133,12 @@ public:
     CurvePoint measure() const;
     void advance();
 
-    // The state at the record being observed (call it from run()'s observer),
-    // and a specimen set back to such a state: its next run() continues the
-    // interrupted one step for step, bit for bit.
+    // The state at the record being observed (call it from run()'s observer,
+    // or after run() returned: its last record), and a specimen set back to
+    // such a state: its next run() continues the interrupted one step for
+    // step, bit for bit. A finished run set back to its last record goes on
+    // to a later stop (ldem cube --extend): the run's events so far are kept,
+    // its stop is not.
     Checkpoint checkpoint() const;
     void restore(const Checkpoint& c);
     bool resumable() const { return progress_.pendingAdvance; }

@@ -38,7 +38,8 @@ STATE_ALPHA = {UNDAMAGED: 0.55, DAMAGED: 1.0, BROKEN: 1.0}  # undamaged bars fai
 STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 
-ZOOM = 3.0  # the zoom panels reach ZOOM x the strain at load loss: the pre-peak and the softening
+ZOOM = 3.0  # the zoom panels reach ZOOM x the strain where the softening ends: the pre-peak and the softening
+SOFTENED = 0.1  # without a load loss in reach, the softening ends where the stress first falls below this x the peak
 
 
 def axis_labels(test) -> tuple:
@@ -48,23 +49,32 @@ def axis_labels(test) -> tuple:
     return own[0] or STRAIN_LABEL, own[1] or STRESS_LABEL
 
 
-def zoom_strain(curve, summary):
-    """The strain the zoom panels end at: ZOOM x the strain at load loss, if the run
-    went further (to separation, its whole axis hides the peak at x = 0); else None."""
-    loss = (summary.get("load_loss") or {}).get("mean_strain")
-    if not loss or ZOOM * loss >= curve["mean_strain"][-1]:
-        return None
-    return ZOOM * loss
+def softening_end(curve, summary):
+    """(strain, name) where the softening ends, if ZOOM x that strain is inside
+    the run (its whole axis then hides the peak at x = 0); else None. That
+    strain is the load loss's; or, where the load loss comes late or never (a
+    triangular cube hinges and keeps some load long after its peak), the first
+    strain past the peak with the stress below SOFTENED x the peak."""
+    x, y = curve["mean_strain"], curve["stress_MPa"]
+    ends = [((summary.get("load_loss") or {}).get("mean_strain"), "load loss")]
+    if len(y):
+        top = int(y.argmax())
+        below = (y[top:] < SOFTENED * y[top]).nonzero()[0]
+        if below.size:
+            ends.append((x[top + below[0]], f"{SOFTENED:.0%} of the peak"))
+    return next(((e, name) for e, name in ends if e and ZOOM * e < x[-1]), None)
 
 
-def zoom_to(ax, x, ys, x_max: float) -> None:
-    """Limits ax to 0 <= x <= x_max, its y range that of the curves ys there (5 % margins)."""
+def zoom_to(ax, x, ys, end) -> None:
+    """Limits ax to 0 <= x <= ZOOM x the softening's end (strain, name), its y
+    range that of the curves ys there (5 % margins)."""
+    x_max = ZOOM * end[0]
     inside = x <= x_max
     lo, hi = min(y[inside].min() for y in ys), max(y[inside].max() for y in ys)
     pad = 0.05 * (hi - lo or 1.0)
     ax.set(xlim=(0.0, x_max), ylim=(lo - pad, hi + pad),
-           title=f"pre-peak and softening (to {ZOOM:g} x the strain at load loss)")
-    ax.axvline(x_max / ZOOM, color="0.4", lw=0.8, ls=":", label="load loss")
+           title=f"pre-peak and softening (to {ZOOM:g} x the strain at {end[1]})")
+    ax.axvline(end[0], color="0.4", lw=0.8, ls=":", label=end[1])
     ax.legend(handles=ax.get_lines()[-1:], loc="upper right")
 
 
@@ -74,10 +84,10 @@ def curve_plot(curve, summary: dict, title: str, labels=(STRAIN_LABEL, STRESS_LA
     each probe (NAME_m: a beam's load against its CMOD, the curve laboratories report)."""
     c, s, (strain_label, stress_label) = curve, summary, labels
     probes = [k for k in c if k.endswith("_m")]
-    x_zoom = zoom_strain(c, s)
-    n = 1 + (x_zoom is not None) + bool(probes)
+    end = softening_end(c, s)
+    n = 1 + (end is not None) + bool(probes)
     fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.4), squeeze=False, layout="constrained")
-    for ax in axes[0, :1 + (x_zoom is not None)]:
+    for ax in axes[0, :1 + (end is not None)]:
         ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
         ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
         if "peak_stress_MPa" in s:
@@ -85,9 +95,9 @@ def curve_plot(curve, summary: dict, title: str, labels=(STRAIN_LABEL, STRESS_LA
                     label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
         ax.set(xlabel=strain_label, ylabel=stress_label)
     axes[0, 0].legend()
-    if x_zoom is not None:
+    if end is not None:
         axes[0, 0].set_title("whole run")
-        zoom_to(axes[0, 1], c["mean_strain"], (c["stress_MPa"], c["stress_top_MPa"]), x_zoom)
+        zoom_to(axes[0, 1], c["mean_strain"], (c["stress_MPa"], c["stress_top_MPa"]), end)
     if probes:
         ax = axes[0, -1]
         for name in probes:
@@ -118,21 +128,22 @@ ENERGIES = (("elastic_J", "elastic"), ("fracture_J", "fracture"), ("damping_J", 
 def energy_plot(curve, summary: dict, strain_label: str = STRAIN_LABEL):
     """The energy budget stacked under the external work over the whole run; beside
     it each energy on its own on a log scale (the elastic and kinetic energies are
-    a sliver of the stack), to ZOOM x the strain at load loss for a run past it."""
+    a sliver of the stack), to ZOOM x the strain where the softening ends for a run past it."""
     c, x = curve, curve["mean_strain"]
     fig, (whole, each) = plt.subplots(1, 2, figsize=(10.4, 4.4), layout="constrained")
     whole.plot(x, c["external_work_J"], "k", lw=2, label="external work")
     whole.stackplot(x, *(c[k] for k, _ in ENERGIES), labels=[name for _, name in ENERGIES], alpha=0.6)
     whole.set(xlabel=strain_label, ylabel="energy [J]", title="budget, whole run")
     whole.legend(loc="upper left")
-    x_max = zoom_strain(c, summary) or x[-1]
+    end = softening_end(c, summary)
+    x_max = x[-1] if end is None else ZOOM * end[0]
     inside = x <= x_max
     each.plot(x[inside], c["external_work_J"][inside], "k", lw=2, label="external work")
     for i, (k, name) in enumerate(ENERGIES):
         each.plot(x[inside], c[k][inside], color=f"C{i}", label=name)
     top = max(c["external_work_J"][inside].max(), 1e-30)
     each.set(yscale="log", ylim=(1e-5 * top, 2 * top), xlim=(0.0, x_max), xlabel=strain_label, ylabel="energy [J]",
-             title="each energy" + (f", to {ZOOM:g} x the strain at load loss" if x_max < x[-1] else ""))
+             title="each energy" + (f", to {ZOOM:g} x the strain at {end[1]}" if end else ""))
     each.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=5)  # below: clear of the curves
     fig.suptitle(f"energy budget (balance error {summary.get('energy_balance_error', float('nan')):.2e})"
                  + energy_flag(summary))

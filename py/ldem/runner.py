@@ -16,17 +16,19 @@ from .cube import CubeResult, CubeTest, refuse_drive_jump
 from .progress import ProgressBar
 
 
-def default_writers(plots: bool = True, checkpoints: bool = False) -> list:
+def default_writers(plots: bool = True, checkpoints: bool = False, final_state: bool = False) -> list:
     """The writers of `ldem cube` and `ldem run`: the curve and the summary,
-    with plots the pictures and the ParaView files, with checkpoints those."""
-    return ["curve", "summary"] + (["figures", "vtk"] if plots else []) + (["checkpoint"] if checkpoints else [])
+    with plots the pictures and the ParaView files, with checkpoints those,
+    with final_state the state a finished run can be extended from."""
+    return ["curve", "summary"] + (["figures", "vtk"] if plots else []) + (["checkpoint"] if checkpoints else []) \
+        + (["final_state"] if final_state else [])
 
 
 def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool] = None, plots: bool = True,
              simulation=None, figure_format: str = "png", snapshots: Sequence[float] = (),
              checkpoint_every: int = 0, restart: bool = False, observers: Sequence = (),
              checkpoint_seconds: float = 0.0, writers: Optional[Sequence[str]] = None,
-             title: str = "") -> CubeResult:
+             title: str = "", final_state: bool = False, extend: bool = False) -> CubeResult:
     """Runs test (an ldem.CubeTest, an ldem.specimen.SpecimenTest, or any
     object with their parameters(), simulation() and run()); with out, the
     writers named in `writers` (ldem.io.writer_names(); default:
@@ -45,17 +47,22 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     bit as if it had never stopped; curve.csv keeps its rows up to the
     checkpoint and gets the rest; summary.json's wall_s counts the run's wall
     time up to the checkpoint too, and restarted_at_step says where it
-    continued."""
+    continued.
+    final_state: a run that does not separate leaves out/final_state.npz;
+    extend: continue the finished run of out/final_state.npz (same
+    parameters but the stop: test's final_strain beyond the strain it
+    reached, stop_at) as if it had never stopped; implies restart."""
     if any(not (s > 0) for s in snapshots):
         raise ValueError(f"snapshot strains must be positive (got {list(snapshots)})")
     if checkpoint_every < 0 or not (checkpoint_seconds >= 0):
         raise ValueError(f"checkpoint intervals must be >= 0 rows and >= 0 s (got {checkpoint_every} rows, "
                          f"{checkpoint_seconds} s)")
     checkpoints = bool(checkpoint_every or checkpoint_seconds)
-    names = io.check_writers(default_writers(plots, checkpoints) if writers is None else writers)
-    if (restart or checkpoints) and out is None:
+    restart = restart or extend
+    names = io.check_writers(default_writers(plots, checkpoints, final_state) if writers is None else writers)
+    if (restart or checkpoints or final_state) and out is None:
         raise ValueError("checkpoints need an output folder")
-    if (restart or checkpoints) and parallel.ranks() > 1:
+    if (restart or checkpoints or final_state) and parallel.ranks() > 1:
         raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
     if out is not None:
         io.prepare_dir(out)
@@ -64,7 +71,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         refuse_drive_jump(test, sim.dt)  # as test.run would, before any file is opened
     previous, wall_before = [], 0.0
     if restart:
-        previous, wall_before = io.restore(test, sim, out)
+        previous, wall_before = io.restore(test, sim, out, extend)
     root = parallel.is_root()  # under MPI, rank 0 writes the files every rank has (the curve, the summary)
     bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance)
     run = io.Run(test, sim, out, previous, dict(snapshots=snapshots, figure_format=figure_format, restart=restart,

@@ -16,7 +16,7 @@ LAYERS = [
      "ldem.helptext"},                                                                     # pictures, reports
     {"ldem.runner"},                                                   # a run wired to its files
     {"ldem.study"},                                                    # ldem.study.* included
-    {"ldem.cli", "ldem.rerun", "ldem.bench", "ldem.scene"},                                        # the edges: command line, scene scripts
+    {"ldem.cli", "ldem.run_command", "ldem.rerun", "ldem.bench", "ldem.scene"},                     # the edges: command line, scene scripts
 ]
 FACADES = {"ldem", "ldem.__main__"}  # the package's front doors re-export from every layer
 MAX_LINES = 300

@@ -155,4 +155,37 @@ def test_a_killed_run_continues_bit_for_bit(cli, tmp_path, signum, code):
     assert json.loads((cut / "summary.json").read_text())["status"] == "done"
     assert not (cut / "checkpoint.npz").exists()
     r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
-    assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to continue"
+    assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to " \
+        f"continue; to take it further: ldem cube --restart {cut} --extend STRAIN"
+
+
+def test_a_finished_run_is_extended_bit_for_bit(cli, tmp_path):
+    """Issue 29, item 1: a run that stopped at its final strain leaves
+    final_state.npz; --restart DIR --extend STRAIN takes it on, and its
+    curve.csv is byte for byte that of a run to STRAIN from the start. An
+    extension to a strain already passed, or of a folder with no final state,
+    is one line and exit 2; a run that separated keeps no final state."""
+    args = ["--size", "0.08", "--strain-rate", "0.1", "--threads", "1", "--no-progress", "--no-plots"]
+    short, whole = tmp_path / "short", tmp_path / "whole"
+    assert cli("cube", *args, "--final-strain", "1e-3", "--out", str(short)).returncode == 0
+    assert (short / "final_state.npz").exists() and not (short / "checkpoint.npz").exists()
+    _one_line_exit_2(cli("cube", "--restart", str(short), "--extend", "5e-4", *args[-2:]),
+                     "cannot extend: the run reached mean strain 0.001")
+    r = cli("cube", "--restart", str(short), "--extend", "2e-3", *args[-2:])
+    assert r.returncode == 0, r.stderr
+    assert cli("cube", *args, "--final-strain", "2e-3", "--out", str(whole)).returncode == 0
+    assert (short / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
+    extended, straight = (json.loads((d / "summary.json").read_text()) for d in (short, whole))
+    assert extended["status"] == "done" and extended["restarted_at_step"] > 0
+    assert extended["parameters"]["final_strain"] == 2e-3
+    for key in ("peak_stress_MPa", "fracture_energy_J", "energy_balance_error", "steps"):
+        assert extended[key] == straight[key], key
+    _one_line_exit_2(cli("cube", "--extend", "2e-3", *args), "--extend goes with --restart DIR")
+    _one_line_exit_2(cli("run", f"{ROOT}/examples/cube_uniform.toml", "--extend", "2e-3"), "--extend goes with --restart")
+    _one_line_exit_2(cli("cube", "--restart", str(tmp_path / "none"), "--extend", "2e-3", *args[-2:]),
+                     "final_state.npz: No such file or directory")
+    separated = tmp_path / "separated"
+    assert cli("cube", "--size", "0.04", "--threads", "1", "--no-progress", "--no-plots", "--out",
+               str(separated)).returncode == 0
+    assert not (separated / "final_state.npz").exists()
+    _one_line_exit_2(cli("cube", "--restart", str(separated), "--extend", "1", *args[-2:]), "the run separated")

@@ -39,12 +39,30 @@ def test_a_run_to_separation_has_a_zoom_panel_over_its_peak_and_softening():
     assert peak and zoom.get_xlim()[0] < peak[0].get_xdata()[0] < zoom.get_xlim()[1]
 
 
-def test_a_run_that_stops_near_its_load_loss_has_no_zoom_panel():
+def test_a_run_that_stops_near_its_softening_has_no_zoom_panel():
     curve, summary = _separation_run()
+    short = curve["mean_strain"] <= 1.5e-3  # ZOOM x the load loss (and x where the stress is 10 % of the peak) beyond
+    curve = {k: v[short] for k, v in curve.items()}
+    assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
     summary.pop("load_loss")
     assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
-    summary["load_loss"] = {"mean_strain": 0.03}  # ZOOM x 0.03 is beyond the run's end
-    assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
+
+
+@pytest.mark.parametrize("loss", [None, 0.03], ids=["no load loss", "late load loss"])
+def test_a_late_load_loss_zooms_to_where_the_stress_fell_below_a_tenth_of_the_peak(loss):
+    """A triangular cube hinges: its load loss comes late (ZOOM x it beyond the
+    run) or never, yet its whole axis hides the peak. The zoom then ends at
+    ZOOM x the first strain past the peak with the stress below 10 % of it."""
+    curve, summary = _separation_run()
+    summary["load_loss"] = {"mean_strain": loss} if loss else None
+    x, y = curve["mean_strain"], curve["stress_MPa"]
+    softened = x[(x > 1e-4) & (y < 0.1 * y.max())][0]
+    assert softened == pytest.approx(1e-4 + 2e-4 * np.log(10), rel=0.02)  # 2 exp(-(x - 1e-4)/2e-4) = 0.2
+    whole, zoom = plots.curve_plot(curve, summary, "cube").axes
+    assert zoom.get_xlim() == pytest.approx((0.0, plots.ZOOM * softened))
+    assert "10% of the peak" in zoom.get_title()
+    each = plots.energy_plot(curve, summary).axes[1]
+    assert each.get_xlim() == pytest.approx((0.0, plots.ZOOM * softened))
 
 
 def test_the_energy_figure_shows_each_energy_over_the_zoom():

@@ -4,7 +4,7 @@
     registry     register_writer / open_writers: a run is given writer names
     tables       curve.csv ("curve"), summary.json ("summary"), study tables
     vtk          bars.vtu, crack.vtu, their series and .pvd/.pvtu ("vtk")
-    checkpoints  checkpoint.npz ("checkpoint"), restarts
+    checkpoints  checkpoint.npz ("checkpoint"), restarts; final_state.npz ("final_state"), extensions
     figures      curve/energies/cracks pictures ("figures"), slice.npz ("slice")
 
 A new writer is a module here that ends with register_writer(name, ...) and
@@ -16,6 +16,6 @@ from .tables import (CurveCsv, cut_curve_after, read_curve, read_summary, read_t
                      write_table)
 from .vtk import (VTU_CELL_ARRAYS, VTU_POINT_ARRAYS, Snapshots, write_bars, write_pvd, write_pvtu,  # noqa: F401
                   write_vtu)
-from .checkpoints import (Checkpoints, case_checkpoint, discard_checkpoint, read_checkpoint, restore,  # noqa: F401
-                          write_checkpoint)
+from .checkpoints import (CHECKPOINT, FINAL_STATE, Checkpoints, case_checkpoint, discard_checkpoint,  # noqa: F401
+                          read_checkpoint, restore, write_checkpoint)
 from .figures import read_slice, write_slice  # noqa: F401

@@ -14,6 +14,9 @@ from .registry import register_writer
 from .tables import CURVE, cut_curve_after
 
 CHECKPOINT = "checkpoint.npz"
+FINAL_STATE = "final_state.npz"
+# What may differ between a finished run and its extension: the stop.
+EXTENSIBLE = ("final_strain", "stop_at")
 
 
 def write_checkpoint(path: str, state: dict, parameters: dict, wall_s: float = 0.0) -> None:
@@ -45,19 +48,25 @@ def discard_checkpoint(out: str) -> None:
         os.remove(os.path.join(out, CHECKPOINT))
 
 
-def restore(test, sim, out: str) -> tuple:
-    """sim set back to out's checkpoint.npz, curve.csv cut to its rows; returns
-    them and the wall time the run had taken up to the checkpoint."""
-    path = os.path.join(out, CHECKPOINT)
+def restore(test, sim, out: str, extend: bool = False) -> tuple:
+    """sim set back to out's checkpoint.npz (with extend: to its
+    final_state.npz, the test's stop may be a later one), curve.csv cut to its
+    rows; returns them and the wall time the run had taken up to that state."""
+    path = os.path.join(out, FINAL_STATE if extend else CHECKPOINT)
     try:
         state, parameters, wall_s = read_checkpoint(path)
     except OSError as e:
-        raise ValueError(f"cannot restart: {path}: {e.strerror or e}") from None
-    mine = {k: v for k, v in test.parameters().items() if k != "threads"}
-    if {k: v for k, v in parameters.items() if k != "threads"} != mine:
-        raise ValueError(f"cannot restart: {path} is of other parameters")
+        raise ValueError(f"cannot {'extend' if extend else 'restart'}: {path}: {e.strerror or e}") from None
+    free = ("threads",) + (EXTENSIBLE if extend else ())
+    mine = {k: v for k, v in test.parameters().items() if k not in free}
+    if {k: v for k, v in parameters.items() if k not in free} != mine:
+        raise ValueError(f"cannot {'extend' if extend else 'restart'}: {path} is of other parameters")
+    rows = cut_curve_after(os.path.join(out, CURVE), int(state["counters"][0]))
+    reached = float(rows[-1]["mean_strain"]) if rows else 0.0
+    if extend and not test.final_strain > reached:
+        raise ValueError(f"cannot extend: the run reached mean strain {reached:.4g}; extend it to a larger one")
     sim.restore(state)
-    return cut_curve_after(os.path.join(out, CURVE), int(state["counters"][0])), wall_s
+    return rows, wall_s
 
 
 class Checkpoints:
@@ -93,5 +102,23 @@ def _checkpoint_writer(run) -> Checkpoints:
                        run.test.parameters(), o.get("checkpoint_seconds", 0.0), o.get("wall_before", 0.0))
 
 
+class FinalState:
+    """final_state.npz at the end of a run that did not separate (it stopped at
+    its final strain, at load loss or on request): restore(..., extend=True)
+    takes it on to a later stop. A run that separated has nothing to extend,
+    and an older final state is removed."""
+
+    def __init__(self, run):
+        self.sim, self.path, self.parameters = run.sim, os.path.join(run.out, FINAL_STATE), run.test.parameters()
+
+    def finish(self, result) -> None:
+        if result.summary["stop_reason"] == "separated":
+            with contextlib.suppress(FileNotFoundError):
+                os.remove(self.path)
+        else:
+            write_checkpoint(self.path, self.sim.checkpoint(), self.parameters, result.wall_s)
+
+
+register_writer("final_state", FinalState, 40, "final_state.npz: the last state of a run that did not separate")
 register_writer("checkpoint", _checkpoint_writer, 30,
                 "checkpoint.npz every checkpoint_every rows and/or checkpoint_seconds of wall time")
