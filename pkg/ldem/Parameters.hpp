@@ -71,8 +71,12 @@
     X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                   \
       "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "   \
       "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)") \
-    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss"}),         \
-      "the event that ends the run: separation (no chain of intact bars joins the faces) or load_loss")        \
+    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}), \
+      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "     \
+      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss") \
+    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                               \
+      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "  \
+      "the mean strain since load loss, with the load still below stop_fraction x peak")                      \
     X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(), "stop at this mean strain if the event has not come") \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")               \
     X(double, dtSafety, "dt_safety", 0.4, "", Domain::openClosed(0, 1),                                        \

@@ -5,7 +5,7 @@
 
 namespace ldem {
 
-enum class StopAt { Separation, LoadLoss };
+enum class StopAt { Separation, LoadLoss, Converged };
 
 struct RunParams {
     LDEM_RUN_PARAMETERS(LDEM_DECLARE_MEMBER)

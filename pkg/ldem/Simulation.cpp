@@ -287,12 +287,25 @@ void Simulation::restore(const Checkpoint& c) {
     progress_.pendingAdvance = true;
 }
 
+bool EnergyConvergence::update(double meanStrain, double fracture, bool loadLost) {
+    if (rungStrain_ == 0) {  // the load-loss record: the first rung
+        rungStrain_ = meanStrain, rungFracture_ = fracture;
+        return false;
+    }
+    if (meanStrain < 2 * rungStrain_) return false;
+    const bool quiet = loadLost && fracture - rungFracture_ < growth_ * fracture;
+    quiet_ = quiet ? quiet_ + 1 : 0;
+    rungStrain_ = meanStrain, rungFracture_ = fracture;
+    return quiet_ >= quietRungs;
+}
+
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
     setThreads(run_.threads);
     RunProgress& g = progress_;
     if (!g.started) {
         g = RunProgress{};
         g.loadLoss = LoadLossDetector(splitWindow_, run_.stopFraction);
+        g.convergence = EnergyConvergence(run_.convergedGrowth);
         g.lastCheck = -kSeparationCheckSteps;
         g.started = true;
     } else if (!g.pendingAdvance) {
@@ -339,10 +352,14 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         g.maxResidual = std::max(g.maxResidual, std::abs(p.balanceResidual()));
         s.fractureEnergy = p.fracture;
         s.steps = step_;
-        if (!s.loadLoss.reached() && g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken)) {
+        const bool lost = g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken);
+        if (!s.loadLoss.reached() && lost) {
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
             drive_.speedupStart = time_;
         }
+        if (run_.stopAt == StopAt::Converged && s.loadLoss.reached() && !s.converged.reached() &&
+            g.convergence.update(p.meanStrain, p.fracture, lost))
+            s.converged = {p.step, p.time, p.meanStrain, p.fracture};
         if (p.broken > 0 && p.stress < 0.5 * s.peakStress && step_ - g.lastCheck >= kSeparationCheckSteps) {
             g.lastCheck = step_;
             if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
@@ -354,6 +371,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         g.pendingAdvance = false;
         if (s.separation.reached()) s.stopReason = "separated";
         else if (run_.stopAt == StopAt::LoadLoss && s.loadLoss.reached()) s.stopReason = "load_lost";
+        else if (s.converged.reached()) s.stopReason = "converged";
         else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
         else if (!keepGoing) s.stopReason = "stopped";
         if (!s.stopReason.empty()) break;

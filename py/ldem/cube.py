@@ -233,6 +233,9 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "U_ratio": None if u_num is None else u_num / u_min,
             "load_loss": _event(summary.load_loss),
             "separation": _event(sep),
+            # stop_at "converged" on a specimen that hinges: the energy at the stop, never U_num.
+            "converged": _event(summary.converged),
+            "U_final_J": summary.converged.fracture if summary.converged.reached else None,
             "fracture_energy_J": summary.fracture_energy,
             "min_fracture_energy_J": u_min,
             # The cheapest cut needs the whole lattice on one process: not under mpirun.

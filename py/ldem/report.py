@@ -68,7 +68,7 @@ def mean_curves_figure(groups, load, sizes, path):
 def fracture_energy_figure(cases, load, sizes, path):
     """U_frac / U_min (fracture energy dissipated so far over G_f x face area)
     against the mean strain on a log axis, to separation: each specimen faint
-    with its load loss (|) and separation (x) marked, and their mean."""
+    with its load loss (|), separation (x) or converged U (s: U_final) marked, and their mean."""
     fig, ax = plt.subplots(figsize=(7.0, 4.6))
     for size in sizes:
         group = [c for c in cases if c.test.load == load and c.test.size == size]
@@ -78,7 +78,7 @@ def fracture_energy_figure(cases, load, sizes, path):
             keep = c["mean_strain"] > 0
             line, = ax.plot(c["mean_strain"][keep], c["fracture_J"][keep] / u_min, lw=0.6, alpha=0.35, color=color)
             color = line.get_color()
-            for event, marker in (("load_loss", "|"), ("separation", "x")):
+            for event, marker in (("load_loss", "|"), ("separation", "x"), ("converged", "s")):
                 if s.get(event):
                     ax.plot(s[event]["mean_strain"], s[event]["fracture_energy_J"] / u_min, marker, color=color,
                             ms=7)
@@ -86,7 +86,7 @@ def fracture_energy_figure(cases, load, sizes, path):
         ax.plot(x, y, lw=1.8, color=color, label=f"{size:g} m (mean)")
     ax.set(xscale="log", xlim=(1e-5, None), xlabel=plots.STRAIN_LABEL, ylabel="U_frac / U_min [-]")
     ax.grid(alpha=0.3, which="both")
-    ax.set_title(f"fracture energy to separation, {load} (|: load lost, x: separated)", fontsize=10)
+    ax.set_title(f"fracture energy to separation, {load} (|: load lost, x: separated, s: U converged)", fontsize=10)
     ax.legend(fontsize=8)
     _save(fig, path)
 
@@ -144,6 +144,14 @@ def damping_figures(out, cases, fmt: str = "png") -> List[str]:
         names.append(f"damping_{load}.{fmt}")
         _save(fig, os.path.join(out, names[-1]))
     return names
+
+
+def stop_rule(p: dict) -> str:
+    """What ends a run of parameters p, in words."""
+    rule = {"separation": "separation (no chain of intact bars joins the faces)", "load_loss": "load loss",
+            "converged": f"separation, or U converged (growth below {p.get('converged_growth', 0.01):g} over the "
+                         f"last doubling of the strain past load loss)"}[p.get("stop_at", "separation")]
+    return f"{p['load']}: {rule}, or mean strain {p['final_strain']:g}"
 
 
 def num_cell(v, fmt) -> str:
@@ -211,8 +219,7 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
                             + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
                             + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
                               f"{p.get('loss_speedup', 1):g} times"],
-              ["stop", ("separation (no chain of intact bars joins the faces)" if p.get("stop_at") == "separation"
-                        else "load loss") + f", or mean strain {p['final_strain']:g}"],
+              ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
               ["threads per case", str(first["threads"])],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]
@@ -248,15 +255,20 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
            "the mean is over the separated specimens, counted in 'separated'); beside it the energy when the "
            "load was lost, and the cheapest cut (the least energy of any set of bars whose rupture separates the "
            "faces: a lower bound of U_num). U_min = E[G_f] x face area; corrected c_a = 0.1385 x E[U_num/U_min] "
-           "(the study's proposal for coarser meshes).", ""]
+           "(the study's proposal for coarser meshes). A specimen that hinges (triangular) does not separate: "
+           "its run stops once U has converged (it grew by less than converged_growth over the last doubling of "
+           "the strain past the load loss), and U there is U_final, never U_num (mean over the converged "
+           "specimens, counted in 'converged').", ""]
     rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}",
              num_cell(r["separation_strain_mean"], ".3g"), num_cell(r["U_num_J_mean"], ".4g"),
              f"{r['U_min_J']:.4g}", num_cell(r["U_ratio_mean"], ".3f"), num_cell(r["U_ratio_cv"], ".3f"),
-             num_cell(r["U_loss_ratio_mean"], ".3f"), f"{r['U_mincut_ratio_mean']:.3f}",
+             num_cell(r["U_loss_ratio_mean"], ".3f"), f"{r.get('converged', 0)}/{r['seeds']}",
+             num_cell(r.get("U_final_ratio_mean", ""), ".3f"), f"{r['U_mincut_ratio_mean']:.3f}",
              num_cell(r["ca_corrected"], ".4f"),
              str(r["energy_errors"])] for r in table]
     md += [md_table(["load", "size [m]", "separated", "strain at separation", "U_num [J]", "U_min [J]", "U_num/U_min",
-                     "CV", "at load loss", "cheapest cut", "corrected c_a", "energy errors"], rows), ""]
+                     "CV", "at load loss", "converged", "U_final/U_min", "cheapest cut", "corrected c_a",
+                     "energy errors"], rows), ""]
     if fits:
         md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]
         md += [md_table(["load", "d", "energy per unit area ~ b^(d-2)", "rms log residual"],

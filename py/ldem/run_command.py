@@ -143,7 +143,12 @@ def report_run(result, args, edge: bool = False) -> int:
             f", cheapest cut {s['U_mincut_J'] / s['min_fracture_energy_J']:.3f} U_min"
         print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
               f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J{cut})")
-    elif test.stop_at == "separation":
+    elif (conv := s.get("converged")):
+        print(f"converged at mean strain {conv['mean_strain']:.4e} (U grew by less than "
+              f"{test.converged_growth:.0%} over the last doubling of the strain): U_final "
+              f"{s['U_final_J']:.4g} J, U_final/U_min {s['U_final_J'] / s['min_fracture_energy_J']:.3f} (not U_num: "
+              "it did not separate)")
+    elif test.stop_at in ("separation", "converged"):
         stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
         print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
               f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")

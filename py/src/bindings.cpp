@@ -59,6 +59,7 @@ py::dict checkpointDict(const Checkpoint& c) {
     d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxEnergy,
                                                g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
                                                s.fractureEnergy, c.servoU, c.servoUprev});
+    d["convergence"] = toNumpy(g.convergence.state());
     d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
     d["load_loss"] = eventArray(s.loadLoss), d["separation"] = eventArray(s.separation);
     std::vector<double> window;
@@ -93,6 +94,8 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
     for (std::size_t i = 0; i + 1 < w.size(); i += 2) records.emplace_back(w[i], w[i + 1]);
     g.loadLoss = LoadLossDetector(sim.splitWindow(), sim.runParams().stopFraction);
     g.loadLoss.setRecords(records);
+    g.convergence = EnergyConvergence(sim.runParams().convergedGrowth);
+    if (d.contains("convergence")) g.convergence.setState(fromNumpy<double>(d["convergence"]));  // older: none
     g.started = true;
     return c;
 }
@@ -213,7 +216,7 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("mean_strain", &RunEvent::meanStrain)
         .def_readonly("fracture", &RunEvent::fracture)
         .def_property_readonly("reached", &RunEvent::reached);
-    py::class_<RunSummary>(m, "RunSummary", "what Simulation.run returns: the peak, the two events, the energy check")
+    py::class_<RunSummary>(m, "RunSummary", "what Simulation.run returns: the peak, the events, the energy check")
         .def("__repr__", [](const RunSummary& s) {
             return "RunSummary(peak_stress=" + formatNumber(s.peakStress) + " Pa, strain_at_peak=" +
                    formatNumber(s.strainAtPeak) + ", stop_reason='" + s.stopReason + "', steps=" +
@@ -224,6 +227,7 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("edge_strain_at_peak", &RunSummary::edgeStrainAtPeak)
         .def_readonly("load_loss", &RunSummary::loadLoss)
         .def_readonly("separation", &RunSummary::separation)
+        .def_readonly("converged", &RunSummary::converged)
         .def_readonly("fracture_energy", &RunSummary::fractureEnergy)
         .def_readonly("energy_balance_error", &RunSummary::energyBalanceError)
         .def_readonly("energy_error", &RunSummary::energyError)

@@ -1,0 +1,51 @@
+"""When a triangular cube is done (issue 27, item 5): stop_at "converged"
+stops a specimen that does not separate once its fracture energy U has
+converged (two doublings of the mean strain past the load loss in a row, each
+with U growing by less than converged_growth and the load still lost), and
+reports U there as U_final, never as U_num. The rule itself is tested on
+synthetic sequences in tests/cpp/test_convergence.cpp; here a whole run."""
+import numpy as np
+import pytest
+
+import ldem
+from ldem import study
+
+GROWTH = 0.05  # the 0.08 m cube is lumpy (a column of 4 modules breaks at once): 1 % takes it past 0.11
+
+
+@pytest.fixture(scope="module")
+def run():
+    return ldem.CubeTest(size=0.08, load="triangular", stop_at="converged", converged_growth=GROWTH,
+                         threads=1).run()
+
+
+def _rungs(curve, loss_step):
+    """The rungs of the rule, read back from the curve's rows: the load-loss
+    record, then the first record at or past twice the last rung's strain."""
+    rows = np.nonzero(curve["step"] >= loss_step)[0]
+    rungs = [rows[0]]
+    for i in rows[1:]:
+        if curve["mean_strain"][i] >= 2 * curve["mean_strain"][rungs[-1]]:
+            rungs.append(i)
+    return rungs
+
+
+def test_a_triangular_cube_stops_once_its_energy_has_converged(run):
+    s, c = run.summary, run.curve
+    assert s["stop_reason"] == "converged" and not s["separated"]
+    assert s["U_num_J"] is None  # never U_num: it did not separate
+    conv = s["converged"]
+    assert s["U_final_J"] == conv["fracture_energy_J"] == c["fracture_J"][-1]
+    assert conv["mean_strain"] == c["mean_strain"][-1] < run.test.final_strain
+    assert s["energy_balance_error"] < 1e-3
+    rungs = _rungs(c, s["load_loss"]["step"])
+    assert rungs[-1] == len(c["step"]) - 1  # it stopped on a rung
+    u = c["fracture_J"][rungs]
+    growth = (u[1:] - u[:-1]) / u[1:]
+    assert growth[-1] < GROWTH and growth[-2] < GROWTH  # two quiet doublings in a row
+    assert len(growth) == 2 or growth[-3] >= GROWTH  # and not earlier: the rung before them was loud
+
+
+def test_the_size_effect_study_stops_triangular_cubes_when_converged():
+    tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"])
+    assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "converged")]
