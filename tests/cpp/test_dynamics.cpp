@@ -404,3 +404,30 @@ TEST(Dynamics, FusedAndSplitStepsAreBitIdentical) {
     EXPECT_EQ(fused.measure().elastic, split.measure().elastic);
     EXPECT_EQ(fused.measure().damping, split.measure().damping);
 }
+
+// A finished run set back to its last record (checkpoint() once run() returned,
+// as ldem cube --extend does) goes on to a later stop, and ends on the bits of a
+// run to that stop from the start: restore() drops the old stop, keeps the rest.
+TEST(Dynamics, AFinishedRunExtendedEndsOnTheBitsOfAStraightRun) {
+    Material m;
+    LoadingParams lp;
+    lp.strainRate = 0.1;
+    RunParams shortRun;
+    shortRun.threads = 1;
+    shortRun.finalStrain = 2e-4;
+    RunParams longRun = shortRun;
+    longRun.finalStrain = 4e-4;
+    Simulation first(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, shortRun);
+    ASSERT_EQ(first.run().stopReason, "final_strain");
+    Simulation extended(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, longRun);
+    extended.restore(first.checkpoint());
+    const RunSummary e = extended.run();
+    Simulation straight(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, longRun);
+    const RunSummary s = straight.run();
+    EXPECT_EQ(e.stopReason, "final_strain");
+    EXPECT_EQ(e.steps, s.steps);
+    EXPECT_GT(e.steps, first.stepCount());
+    EXPECT_TRUE(sameBits(e.peakStress, s.peakStress));
+    EXPECT_TRUE(sameBits(e.fractureEnergy, s.fractureEnergy));
+    EXPECT_TRUE(sameBits(e.energyBalanceError, s.energyBalanceError));
+}
