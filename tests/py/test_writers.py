@@ -49,7 +49,7 @@ def test_the_default_writers_are_the_commands_files(tmp_path):
 def test_an_unknown_writer_is_a_clear_error_before_any_run(tmp_path):
     out = tmp_path / "run"
     with pytest.raises(ValueError, match=r"unknown writer 'curves' \(known: curve, figures, vtk, checkpoint, "
-                                         r"slice, summary\)"):
+                                         r"final_state, slice, summary\)"):
         ldem.run_cube(ldem.CubeTest(**TINY), out=str(out), writers=["curves", "summary"])
     assert not out.exists()  # nothing was computed, no folder made
 
