@@ -30,6 +30,7 @@ The material, and why:
     /usr/bin/python3 scripts/gregoire2013.py curves [--out ...]      # curves/*.csv, curves.png
     /usr/bin/python3 scripts/gregoire2013.py compare [--out ...] [--data DIR]  # comparison.md|png (beam_comparison)
     /usr/bin/python3 scripts/gregoire2013.py size-effect [--out ...] # size_effect.md|csv|png, cracks.png
+    /usr/bin/python3 scripts/gregoire2013.py diagnose [--factors A,B] [--jobs 2]  # diagnosis/ (beam_diagnosis)
 
 The beams, their runs and tables are the study ldem.study.beams (cases in
 OUT/cases/D{mm}_n{notch}_s{seed}/, resumed and run side by side as every
@@ -39,7 +40,7 @@ import argparse
 import os
 import sys
 
-from ldem.study import beam_comparison, beam_report, beam_tables, beams
+from ldem.study import beam_comparison, beam_diagnosis, beam_report, beam_tables, beams
 
 OUT = os.path.join("results", "beams", "gregoire2013")
 
@@ -87,7 +88,12 @@ def main(argv) -> None:
     k.add_argument("--data", default=None, help="the measurements (measured.csv, D50_*_load_cmod.csv; default "
                                                 "../shared/data/gregoire2013 beside the repository)")
     z = sub.add_parser("size-effect")
-    for q in (p, u, c, k, z):
+    g = sub.add_parser("diagnose", help="one factor at a time against the prediction (issue 28)")
+    g.add_argument("--factors", default=",".join(f.name for f in beam_diagnosis.FACTORS),
+                   help="comma-separated, of: " + ", ".join(f.name for f in beam_diagnosis.FACTORS))
+    g.add_argument("--seeds", type=int, default=6)
+    g.add_argument("--jobs", type=int, default=1, help="runs at a time, one thread each")
+    for q in (p, u, c, k, z, g):
         q.add_argument("--out", default=OUT)
     args = ap.parse_args(argv)
     {"calibrate": lambda a: beams.calibrate(lambda s: print(s, flush=True)),
@@ -95,7 +101,10 @@ def main(argv) -> None:
      "uniform": lambda a: beams.run_beams(beams.uniform_tests(a.eps_p), a.out, a.jobs),
      "curves": lambda a: beam_report.curves_figure(a.out, beam_tables.write_curve_tables(a.out, a.seeds)),
      "compare": compare,
-     "size-effect": size_effect}[args.command](args)
+     "size-effect": size_effect,
+     "diagnose": lambda a: print("\n".join(beam_diagnosis.markdown(beam_diagnosis.run(
+         os.path.join(a.out, "diagnosis"), a.factors.split(","), a.seeds, a.jobs,
+         lambda s: print(s, flush=True)))))}[args.command](args)
 
 
 if __name__ == "__main__":

@@ -14,9 +14,11 @@ from __future__ import annotations
 import math
 import os
 import statistics
-from typing import Callable, List, Sequence
+from dataclasses import dataclass
+from typing import Callable, List, Sequence, Tuple
 
 from .. import io
+from .concrete import prism as tension_prism
 from ..specimen import SpecimenTest
 from .cases import Named
 from .executors import run_cases
@@ -30,40 +32,68 @@ DEPTHS, NOTCHES = (0.05, 0.1, 0.2), (0.0, 0.2, 0.5)
 PREDICTION_COLUMNS = ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN"]
 
 
-def prism(eps_p: float, seed: int) -> SpecimenTest:
+@dataclass(frozen=True)
+class Variant:
+    """What a beam's run may change against the prediction's (the diagnosis of
+    issue 28 varies one at a time). material: (name, value) pairs over MATERIAL
+    (Gf_mean, Gf_cv, corr_length, law, ...); L0: the module; bearing: the
+    platen's width in modules (the supports are bearing - 1 modules wide: one
+    node line at 1); rate: deflection rate / D [1/s]; opening_rate: a CMOD
+    servo's opening rate / D [1/s] (0: the platen under displacement control)."""
+    material: Tuple[Tuple[str, object], ...] = ()
+    L0: float = L0
+    bearing: int = 1
+    rate: float = 0.1
+    opening_rate: float = 0.0
+
+    def concrete(self, eps_p: float, **more) -> dict:
+        """The material's parameters: the prediction's, eps_p and more, then the variant's."""
+        return dict(MATERIAL, eps_p=eps_p, **more) | dict(self.material)
+
+
+PREDICTION = Variant()
+
+
+def prism(eps_p: float, seed: int, v: Variant = PREDICTION) -> SpecimenTest:
     """The direct tension prism 50 x 50 x 100 mm of the calibration of eps_p."""
-    return SpecimenTest({
-        "title": f"direct tension prism 50 x 50 x 100 mm, eps_p {eps_p:.4g}",
-        "shape": {"kind": "box", "L0": L0, "size": [0.05, 0.05, 0.10]},
-        "groups": {"bottom": {"face": "z-", "fix": ["x", "y", "z"]}, "top": {"face": "z+", "drive": {"z": 1.0}}},
-        "measure": {"support": "bottom", "loaded": "top", "area": 0.0025, "gauge_length": 0.10},
-        "material": dict(MATERIAL, eps_p=eps_p), "loading": {"strain_rate": 0.05},
-        "run": {"seed": seed, "stop_at": "load_loss", "final_strain": 3e-3, "threads": 1}})
+    return tension_prism(v.concrete(eps_p), v.L0, seed)
 
 
-def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0) -> SpecimenTest:
+def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v: Variant = PREDICTION) -> SpecimenTest:
     """Span 2.5 D centred on a length 3.5 D: supports at 0.5 D and 3 D. The
-    notch (one module wide) and the platen (a module wide) are on the module at
-    mid-span, or just right of it when mid-span is a node line (D = 100, 200 mm:
-    2.5 mm off, 1 to 2 % of the span)."""
+    notch (one module wide) and the platen (v.bearing modules wide) are on the
+    module at mid-span, or just right of it when mid-span is a node line (D =
+    100, 200 mm: 2.5 mm off, 1 to 2 % of the span)."""
+    h = v.L0
     length = 3.5 * D
-    mid = (math.floor(1.75 * D / L0 + 1e-9) + 0.5) * L0
-    shape = {"kind": "box", "L0": L0, "size": [length, B, D]}
+    mid = (math.floor(1.75 * D / h + 1e-9) + 0.5) * h
+    shape = {"kind": "box", "L0": h, "size": [length, B, D]}
     if notch > 0:
-        shape["notch"] = {"depth": notch * D, "width": L0, "at": mid}
+        shape["notch"] = {"depth": notch * D, "width": h, "at": mid}
+
+    def support(x):  # one node line, or a strip (v.bearing - 1) modules wide
+        if v.bearing == 1:
+            return {"face": "z-", "plane": {"x": x}}
+        w = 0.5 * (v.bearing - 1) * h
+        return {"box": {"min": [x - w, 0.0, 0.0], "max": [x + w, B, 0.0]}}
+
+    cmod = {"a": [mid - 0.5 * h, 0.0, 0.0], "b": [mid + 0.5 * h, 0.0, 0.0], "direction": "x"}
+    servo = {"control": "cmod"} if v.opening_rate > 0 else {}
+    opening = {"opening_rate": v.opening_rate * D} if v.opening_rate > 0 else {}
     return SpecimenTest({
         "title": f"Gregoire 2013 beam D = {D * 1e3:g} mm, notch {notch:g} D",
         "shape": shape,
-        "groups": {"left": {"face": "z-", "plane": {"x": 0.5 * D}, "fix": ["x", "y", "z"]},
-                   "right": {"face": "z-", "plane": {"x": 3.0 * D}, "fix": ["z"]},
+        "groups": {"left": dict(support(0.5 * D), fix=["x", "y", "z"]),
+                   "right": dict(support(3.0 * D), fix=["z"]),
                    "supports": {"union": ["left", "right"]},
-                   "load": {"box": {"min": [mid - 0.5 * L0, 0.0, D], "max": [mid + 0.5 * L0, B, D]},
+                   "load": {"box": {"min": [mid - 0.5 * v.bearing * h, 0.0, D],
+                                    "max": [mid + 0.5 * v.bearing * h, B, D]},
                             "drive": {"z": -1.0}}},
-        "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [MN]
-                    "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
-                    "probes": {"cmod": {"a": [mid - 0.5 * L0, 0.0, 0.0], "b": [mid + 0.5 * L0, 0.0, 0.0],
-                                        "direction": "x"}}},
-        "material": dict(MATERIAL, eps_p=eps_p, Gf_cv=gf_cv), "loading": {"strain_rate": 0.1},
+        "measure": dict({"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [MN]
+                         "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
+                         "probes": {"cmod": cmod}}, **servo),
+        "material": v.concrete(eps_p, Gf_cv=gf_cv),
+        "loading": dict({"strain_rate": v.rate}, **opening),
         "run": {"seed": seed, "final_strain": 3e-3, "threads": 1}})
 
 
@@ -72,17 +102,18 @@ class PastThePeak:
     deflection twice that at the peak and the load below half the peak. (The
     load-loss test at a fraction of 0.5 would fire on the rising branch: its
     average over two fundamental periods is below half the current load early on.)
-    rows: those recorded before a restart."""
+    rows: those recorded before a restart; opening: the CMOD instead of the
+    deflection (under a CMOD servo the deflection may stall past the peak)."""
 
-    def __init__(self, rows=()):
-        self.peak, self.at = 0.0, 0.0
+    def __init__(self, rows=(), opening: bool = False):
+        self.peak, self.at, self.key = 0.0, 0.0, "cmod_m" if opening else "mean_strain"
         for row in rows:
             self(row)
 
     def __call__(self, row) -> bool:
         if row["stress_MPa"] > self.peak:
-            self.peak, self.at = row["stress_MPa"], row["mean_strain"]
-        return not (row["mean_strain"] > 2 * self.at and row["stress_MPa"] < 0.5 * self.peak)
+            self.peak, self.at = row["stress_MPa"], row[self.key]
+        return not (row[self.key] > 2 * self.at and row["stress_MPa"] < 0.5 * self.peak)
 
 
 def beam_case(out: str, D: float, notch: float, seed: int, gf_cv: float = 1.0) -> str:
@@ -95,22 +126,24 @@ class Beam(Named):
     until PastThePeak; its folder D{mm}_n{notch}_s{seed} in cases/ (random G_f)
     or cases_cv{CV}/; seed 1 also writes the pictures and ParaView files."""
 
-    def __init__(self, D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0):
-        self.D, self.notch, self.eps_p, self.seed, self.gf_cv = D, notch, eps_p, seed, gf_cv
-        folder, name = os.path.split(beam_case("", D, notch, seed, gf_cv))
-        super().__init__(beam(D, notch, eps_p, seed, gf_cv), name,
-                         ["curve", "summary"] + (["figures", "vtk"] if seed == 1 else []), folder)
+    def __init__(self, D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0,
+                 v: Variant = PREDICTION, folder: str = ""):
+        self.D, self.notch, self.eps_p, self.seed, self.gf_cv, self.v = D, notch, eps_p, seed, gf_cv, v
+        default_folder, name = os.path.split(beam_case("", D, notch, seed, gf_cv))
+        super().__init__(beam(D, notch, eps_p, seed, gf_cv, v), name,
+                         ["curve", "summary"] + (["figures", "vtk"] if seed == 1 else []), folder or default_folder)
 
     def run(self, observers=(), simulation=None, previous_rows=()):
-        return self.test.run(list(observers) + [PastThePeak(previous_rows)], simulation, previous_rows)
+        stop = PastThePeak(previous_rows, opening=self.v.opening_rate > 0)
+        return self.test.run(list(observers) + [stop], simulation, previous_rows)
 
 
-def calibrate(log: Callable[[str], None] = print) -> float:
+def calibrate(log: Callable[[str], None] = print, v: Variant = PREDICTION) -> float:
     """eps_p such that the prisms' (seeds 1-3) mean strength is f_t: one
     scaling from f_t / E, then checked. Returns it."""
     eps = FT / E
     for it in range(2):
-        peaks = [prism(eps, s).run().summary["peak_stress_MPa"] * 1e6 for s in (1, 2, 3)]
+        peaks = [prism(eps, s, v).run().summary["peak_stress_MPa"] * 1e6 for s in (1, 2, 3)]
         mean = statistics.mean(peaks)
         log(f"eps_p {eps:.6g}: strengths {', '.join(f'{p / 1e6:.4f}' for p in peaks)} MPa, mean "
             f"{mean / 1e6:.4f} MPa ({mean / FT - 1:+.2%} of f_t)")
