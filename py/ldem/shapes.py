@@ -14,7 +14,7 @@ import re
 import numpy as np
 
 AXES = {"x": 0, "y": 1, "z": 2}
-_SHAPE_KEYS = {"box": {"size", "notch"}, "cylinder": {"diameter", "length", "axis"},
+_SHAPE_KEYS = {"box": {"size", "notch", "cutout"}, "cylinder": {"diameter", "length", "axis"},
                "dogbone": {"size", "neck", "radius"}, "mask": {"file", "size"}}
 
 
@@ -116,6 +116,8 @@ def module_mask(shape: dict, where: Optional[Where] = None):
         mask = np.ones(n, bool)
         if "notch" in shape:
             mask &= ~_notch(shape["notch"], x, z, size, L0, where)
+        if "cutout" in shape:
+            mask &= ~_cutout(shape["cutout"], x, y, z, where)
     elif kind == "cylinder":
         r = [x, y, z]
         across = [r[a] - 0.5 * d for a in range(3) if a != axis]
@@ -143,6 +145,18 @@ def _notch(notch, x, z, size, L0, where) -> np.ndarray:
     if width < L0 * (1 - 1e-9):
         raise where("shape.notch.width", f"must be at least one module, {L0:g} m (got {width:g})")
     return (np.abs(x - at) < 0.5 * width) & (z < depth)
+
+
+def _cutout(cut, x, y, z, where) -> np.ndarray:
+    """The modules whose centres are inside the box {min, max} (e.g. the
+    missing quadrant of an L-shaped panel)."""
+    if not isinstance(cut, dict):
+        raise where("shape.cutout", "must be a table {min = [x, y, z], max = [x, y, z]}")
+    check_keys(cut, {"min", "max"}, where, "shape.cutout.")
+    lo, hi = point(cut.get("min"), where, "shape.cutout.min"), point(cut.get("max"), where, "shape.cutout.max")
+    if (hi <= lo).any():
+        raise where("shape.cutout.max", f"must be above min on every axis (min {list(lo)}, max {list(hi)})")
+    return (x > lo[0]) & (x < hi[0]) & (y > lo[1]) & (y < hi[1]) & (z > lo[2]) & (z < hi[2])
 
 
 def _dogbone(shape, x, z, size, where) -> np.ndarray:

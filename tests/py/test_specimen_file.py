@@ -77,6 +77,22 @@ def test_shapes_cut_what_they_say():
     width = bone[:, 0, :].sum(axis=0) * L0
     assert width[0] == width[-1] == pytest.approx(0.1) and width.min() == pytest.approx(0.06)
     assert np.array_equal(width, width[::-1]) and width[n[2] // 2] == width.min()  # narrowest at mid-height
+    # An L-shaped panel: the lower-right quadrant of a 0.1 m square cut out, exactly its 5 x 5 modules.
+    _, n, ell = module_mask({"kind": "box", "L0": L0, "size": [0.1, 0.02, 0.1],
+                             "cutout": {"min": [0.05, 0.0, 0.0], "max": [0.1, 0.02, 0.05]}})
+    assert n == (10, 2, 10) and (~ell).sum() == 5 * 2 * 5
+    assert not ell[5:, :, :5].any() and ell[:5].all() and ell[:, :, 5:].all()
+
+
+@pytest.mark.parametrize("cutout, message", [
+    ([0.0, 0.0], "must be a table"),
+    ({"min": [0.05, 0.0, 0.0]}, "shape.cutout.max"),
+    ({"min": [0.05, 0.0, 0.0], "max": [0.01, 0.02, 0.05]}, "must be above min"),
+    ({"min": [0.05, 0.0, 0.0], "max": [0.1, 0.02, 0.05], "depth": 1}, "depth"),
+])
+def test_a_bad_cutout_is_a_clear_error(cutout, message):
+    with pytest.raises(SpecimenError, match=message):
+        module_mask({"kind": "box", "L0": 0.01, "size": [0.1, 0.02, 0.1], "cutout": cutout})
 
 
 def test_a_line_is_two_coordinates():
