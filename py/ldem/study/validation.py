@@ -37,7 +37,7 @@ class Blind:
 SPECIMENS = {
     # Winkler, Hofstetter and Niederwieser (2001)
     "l_panel": Blind("examples/l_panel.toml", {"E": 25.85e9, "nu": 0.18, "f_t": 2.7e6, "G_F": 90.0},
-                     "mean_strain", "load-point displacement [mm]", 1.0),
+                     "mean_strain", "load-point displacement [mm]", 500.0),  # gauge 0.5 m, to mm
     # García-Álvarez, Gettu and Carol (2012)
     "eccentric_notch_beam": Blind("examples/eccentric_notch_beam.toml",
                                   {"E": 33.8e9, "nu": 0.2, "f_t": 3.5e6, "G_F": 125.0, "rho": 2346.0},
