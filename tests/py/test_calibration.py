@@ -102,3 +102,12 @@ def test_the_diagnosis_table_gives_each_factors_change_against_the_prediction(tm
     assert "1.000 (0.020), -33.3%" in lines[3]
     assert lines[-1].startswith("| **measured**") and "0.979" in lines[-1]
     assert math.isclose(beam_diagnosis.GF_INITIAL, 73 * 42.3 ** 0.18 / 2.5)
+
+
+def test_the_beams_with_a_calibrated_concrete_carry_all_of_it():
+    m = concrete.lattice_material(37.5e9, 0.21, 1.14e-4, 143.24)
+    tests = beams.series_tests(m["eps_p"], 2, beams.calibrated_variant(m), beams.DEPTHS[:1])
+    assert len(tests) == 2 * 3 and {t.D for t in tests} == {0.05}
+    for t in tests:
+        got = t.test.description["material"]
+        assert {k: got[k] for k in m} == m and got["Gf_cv"] == 1.0

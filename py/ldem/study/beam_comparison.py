@@ -187,7 +187,7 @@ def report(rows: List[dict]) -> str:
         "(`curves/`, sampled more coarsely than the run's peak in `predictions.csv`).", ""])
 
 
-def comparison_figure(out: str, data: str, rows: List[dict]) -> str:
+def comparison_figure(out: str, data: str, rows: List[dict], what: str = "the blind prediction") -> str:
     """comparison.png: for each beam with a measured curve, the predicted load-CMOD
     curves of every seed over the measured mean and its min-max envelope, the
     peaks marked; upper row up to three times the larger CMOD at peak, lower row
@@ -223,7 +223,7 @@ def comparison_figure(out: str, data: str, rows: List[dict]) -> str:
     handles.append(Line2D([], [], color="0.4", marker="^", ls="none", ms=6))
     labels.append("ldem peak of each seed")
     fig.legend(handles, labels, loc="upper center", ncol=5, fontsize=8, bbox_to_anchor=(0.5, 0.955))
-    fig.suptitle("Grégoire et al. (2013): the blind prediction (ldem, CMOD on a 5 mm gauge) "
+    fig.suptitle(f"Grégoire et al. (2013): {what} (ldem, CMOD on a 5 mm gauge) "
                  "against the measurements (gauge unknown)", fontsize=10)
     fig.tight_layout(rect=(0, 0, 1, 0.915))
     path = os.path.join(out, "comparison.png")

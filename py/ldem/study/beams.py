@@ -158,10 +158,15 @@ def calibrate(log: Callable[[str], None] = print, v: Variant = PREDICTION) -> fl
     return eps
 
 
-def series_tests(eps_p: float, seeds: int) -> List[Beam]:
+def series_tests(eps_p: float, seeds: int, v: Variant = PREDICTION, depths=DEPTHS) -> List[Beam]:
     """Every beam with random G_f, seed by seed: a series cut short has as many
     specimens of every beam."""
-    return [Beam(D, n, eps_p, s) for s in range(1, seeds + 1) for D in DEPTHS for n in NOTCHES]
+    return [Beam(D, n, eps_p, s, v=v) for s in range(1, seeds + 1) for D in depths for n in NOTCHES]
+
+
+def calibrated_variant(material: dict) -> Variant:
+    """The beams with a material of ldem.study.concrete.calibrate (its eps_p apart)."""
+    return Variant(tuple((k, v) for k, v in material.items() if k != "eps_p"))
 
 
 def uniform_tests(eps_p: float) -> List[Beam]:
