@@ -87,9 +87,10 @@ def test_each_factor_of_the_diagnosis_changes_what_it_names():
     assert servo.build.params["strain_rate"] == 0.1
     assert beams.beam(0.05, 0.5, 1e-4, 1, v=by["rate_half"].v).build.params["strain_rate"] == 0.05
     wide = beams.beam(0.05, 0.5, 1e-4, 1, v=by["bearing3"].v).build.groups
+    platen = beams.beam(0.05, 0.5, 1e-4, 1, v=by["platen3"].v).build.groups
     narrow = beams.beam(0.05, 0.5, 1e-4, 1).build.groups
-    assert len(wide["load"]) == 2 * len(narrow["load"])  # 4 node lines against 2
-    assert len(wide["left"]) == 3 * len(narrow["left"])  # 3 node lines against 1
+    assert len(wide["load"]) == len(platen["load"]) == 2 * len(narrow["load"])  # 4 node lines against 2
+    assert len(wide["left"]) == 3 * len(narrow["left"]) and len(platen["left"]) == len(narrow["left"])
     assert by["L0_2.5"].beams == ((0.05, 0.0), (0.05, 0.5)) and by["L0_2.5"].recalibrated()
 
 

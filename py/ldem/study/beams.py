@@ -36,13 +36,14 @@ PREDICTION_COLUMNS = ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min
 class Variant:
     """What a beam's run may change against the prediction's (the diagnosis of
     issue 28 varies one at a time). material: (name, value) pairs over MATERIAL
-    (Gf_mean, Gf_cv, corr_length, law, ...); L0: the module; bearing: the
-    platen's width in modules (the supports are bearing - 1 modules wide: one
-    node line at 1); rate: deflection rate / D [1/s]; opening_rate: a CMOD
+    (Gf_mean, Gf_cv, corr_length, law, ...); L0: the module; platen: its
+    width in modules; supports: each a strip of that many node lines (held
+    as the one line is: a wider one also resists the beam's rotation); rate: deflection rate / D [1/s]; opening_rate: a CMOD
     servo's opening rate / D [1/s] (0: the platen under displacement control)."""
     material: Tuple[Tuple[str, object], ...] = ()
     L0: float = L0
-    bearing: int = 1
+    platen: int = 1
+    supports: int = 1
     rate: float = 0.1
     opening_rate: float = 0.0
 
@@ -61,7 +62,7 @@ def prism(eps_p: float, seed: int, v: Variant = PREDICTION) -> SpecimenTest:
 
 def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v: Variant = PREDICTION) -> SpecimenTest:
     """Span 2.5 D centred on a length 3.5 D: supports at 0.5 D and 3 D. The
-    notch (one module wide) and the platen (v.bearing modules wide) are on the
+    notch (one module wide) and the platen (v.platen modules wide) are on the
     module at mid-span, or just right of it when mid-span is a node line (D =
     100, 200 mm: 2.5 mm off, 1 to 2 % of the span)."""
     h = v.L0
@@ -71,10 +72,10 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v:
     if notch > 0:
         shape["notch"] = {"depth": notch * D, "width": h, "at": mid}
 
-    def support(x):  # one node line, or a strip (v.bearing - 1) modules wide
-        if v.bearing == 1:
+    def support(x):  # one node line, or a strip of v.supports node lines
+        if v.supports == 1:
             return {"face": "z-", "plane": {"x": x}}
-        w = 0.5 * (v.bearing - 1) * h
+        w = 0.5 * (v.supports - 1) * h
         return {"box": {"min": [x - w, 0.0, 0.0], "max": [x + w, B, 0.0]}}
 
     cmod = {"a": [mid - 0.5 * h, 0.0, 0.0], "b": [mid + 0.5 * h, 0.0, 0.0], "direction": "x"}
@@ -86,8 +87,8 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v:
         "groups": {"left": dict(support(0.5 * D), fix=["x", "y", "z"]),
                    "right": dict(support(3.0 * D), fix=["z"]),
                    "supports": {"union": ["left", "right"]},
-                   "load": {"box": {"min": [mid - 0.5 * v.bearing * h, 0.0, D],
-                                    "max": [mid + 0.5 * v.bearing * h, B, D]},
+                   "load": {"box": {"min": [mid - 0.5 * v.platen * h, 0.0, D],
+                                    "max": [mid + 0.5 * v.platen * h, B, D]},
                             "drive": {"z": -1.0}}},
         "measure": dict({"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [MN]
                          "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
