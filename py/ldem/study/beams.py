@@ -38,8 +38,9 @@ class Variant:
     issue 28 varies one at a time). material: (name, value) pairs over MATERIAL
     (Gf_mean, Gf_cv, corr_length, law, ...); L0: the module; platen: its
     width in modules; supports: each a strip of that many node lines (held
-    as the one line is: a wider one also resists the beam's rotation); rate: deflection rate / D [1/s]; opening_rate: a CMOD
-    servo's opening rate / D [1/s] (0: the platen under displacement control)."""
+    as the one line is: a wider one also resists the beam's rotation); rate:
+    deflection rate / D [1/s]; opening_rate: a CMOD servo's opening rate / D
+    [1/s] (0: the platen under displacement control)."""
     material: Tuple[Tuple[str, object], ...] = ()
     L0: float = L0
     platen: int = 1
