@@ -18,13 +18,13 @@ from dataclasses import dataclass
 from typing import Callable, List, Sequence, Tuple
 
 from .. import io
-from .concrete import prism as tension_prism
+from .concrete import mc2010_fracture_energy, prism as tension_prism
 from ..specimen import SpecimenTest
 from .cases import Named
 from .executors import run_cases
 
 E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
-GF = 73 * (FC / 1e6) ** 0.18  # fib MC2010 eq. 5.1-9 [N/m]
+GF = mc2010_fracture_energy(FC)  # fib MC2010 eq. 5.1-9 [N/m]
 L0 = 0.005
 B = 0.05  # thickness [m]
 MATERIAL = {"E": E, "nu": NU, "Gf_mean": GF}
