@@ -1,35 +1,60 @@
 #include "ldem/Integrator.hpp"
 
+#include <algorithm>
+
+#include "ldem/Block.hpp"
 #include "ldem/Slab.hpp"
 
 namespace ldem {
 
 namespace {
-// One DOF, unless held; returns its damping work. Selects instead of branches,
-// so the node loop vectorizes.
-inline double advanceDof(bool held, double m, double invM, double f, const CentralDifference& cd, double& u,
-                         double& v) {
-    const double vNew = cd.a * v + cd.b * f * invM;
-    const double vBar = 0.5 * (v + vNew);
+// One DOF, unless held; returns its damping work. Selects instead of
+// branches; the same source for one DOF (T double, M bool) and for the DOFs of
+// a block of nodes (T Block, M BlockMask: -1 in the lanes that are held).
+template <class T, class M>
+inline T advanceDof(M held, T m, T invM, T f, const CentralDifference& cd, T& u, T& v) {
+    const T vNew = cd.a * v + cd.b * f * invM;
+    const T vBar = 0.5 * (v + vNew);
     u = held ? u : u + cd.dt * vNew;
     v = held ? v : vNew;
-    return held ? 0.0 : cd.Df * m * vBar * vBar * cd.dt;
+    return held ? T{} : cd.Df * m * vBar * vBar * cd.dt;
+}
+
+// The mask bit `bit` of kBlock nodes from p, as lanes.
+inline BlockMask heldLanes(const std::uint8_t* p, unsigned bit) {
+    BlockMask h;
+    for (int k = 0; k < kBlock; ++k) h[k] = p[k] & bit;
+    return h != 0;
 }
 }  // namespace
 
+// kBlock nodes at a time, the rest one by one. The damping work adds up in
+// kBlock lanes (node first + k + kBlock j in lane k), then lane after lane: the
+// same sum on any machine and for any thread count.
 double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
                     const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
                     const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
-    double damping = 0.0;
-#pragma omp simd reduction(+ : damping)
-    for (std::int32_t i = first; i < end; ++i) {
-        const unsigned h = mask[i];
-        const double m = mass[i], invM = invMass[i];
-        damping += advanceDof(h & 1, m, invM, f.x[i], cd, u.x[i], v.x[i]) +
-                   advanceDof(h & 2, m, invM, f.y[i], cd, u.y[i], v.y[i]) +
-                   advanceDof(h & 4, m, invM, f.z[i], cd, u.z[i], v.z[i]);
+    Block damping = {};
+    std::int32_t i = first;
+    for (; i + kBlock <= end; i += kBlock) {
+        const Block m = loadBlock(&mass[i]), invM = loadBlock(&invMass[i]);
+        Block ux = loadBlock(&u.x[i]), uy = loadBlock(&u.y[i]), uz = loadBlock(&u.z[i]);
+        Block vx = loadBlock(&v.x[i]), vy = loadBlock(&v.y[i]), vz = loadBlock(&v.z[i]);
+        damping += advanceDof(heldLanes(&mask[i], 1), m, invM, loadBlock(&f.x[i]), cd, ux, vx) +
+                   advanceDof(heldLanes(&mask[i], 2), m, invM, loadBlock(&f.y[i]), cd, uy, vy) +
+                   advanceDof(heldLanes(&mask[i], 4), m, invM, loadBlock(&f.z[i]), cd, uz, vz);
+        storeBlock(ux, &u.x[i]), storeBlock(uy, &u.y[i]), storeBlock(uz, &u.z[i]);
+        storeBlock(vx, &v.x[i]), storeBlock(vy, &v.y[i]), storeBlock(vz, &v.z[i]);
     }
-    return damping;
+    for (; i < end; ++i) {
+        const unsigned held = mask[i];
+        damping[(i - first) % kBlock] += advanceDof<double, bool>(held & 1, mass[i], invMass[i], f.x[i], cd, u.x[i], v.x[i]) +
+                                         advanceDof<double, bool>(held & 2, mass[i], invMass[i], f.y[i], cd, u.y[i], v.y[i]) +
+                                         advanceDof<double, bool>(held & 4, mass[i], invMass[i], f.z[i], cd, u.z[i], v.z[i]);
+    }
+    double sum = 0.0;
+    for (int k = 0; k < kBlock; ++k) sum += damping[k];
+    return sum;
 }
 
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "ldem/Block.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/Slab.hpp"
 
@@ -47,6 +48,7 @@ BarEnergies lawEnergies(const Lattice& lat, const Field3& u, const Law& law) {
 
 }  // namespace
 
+
 void BarForceBuffers::prepare(const Lattice& lat, int threads) {
     if (threads == threads_ && base_.size() == std::size_t(lat.numLayers())) return;
     threads_ = threads;
@@ -66,19 +68,40 @@ void BarForceBuffers::prepare(const Lattice& lat, int threads) {
     for (int m = 0; m < lat.numLayers(); ++m) base_[m] = storage_.data() + std::size_t(buffer[m]) * 3 * stride_;
 }
 
+// Every node's sum runs over its incidences in their order, from 0: the same
+// additions, in the same order, in the bulk (a block of nodes at a time, its
+// sums in registers: a loop over f in memory, incidence after incidence, was
+// bound by the stores and their reloads) and at the row's ends.
 void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f) {
     for (std::int32_t r = lat.nodeLayerStart[m]; r < lat.nodeLayerStart[m + 1]; ++r) {
         const NodeRow& row = lat.nodeRows[r];
         double *fx = &f.x[row.first], *fy = &f.y[row.first], *fz = &f.z[row.first];
-        for (int i = 0; i < row.count; ++i) fx[i] = fy[i] = fz[i] = 0.0;
-        for (const Incidence& in : row.incidences) {
-            const double s = in.sign;
-            const double *gx = g.x(in.layer), *gy = g.y(in.layer), *gz = g.z(in.layer);
-            const std::int32_t b0 = in.inLayerAtZero;
-#pragma omp simd
-            for (int i = in.begin; i < in.end; ++i)
-                fx[i] += s * gx[b0 + i], fy[i] += s * gy[b0 + i], fz[i] += s * gz[b0 + i];
+        // Blocks over the bulk, the last one shifted back to end with it
+        // (its nodes computed twice, the same sums): no partial block.
+        const bool blocks = row.bulkEnd - row.bulkBegin >= kBlock;
+        for (int i0 = row.bulkBegin; blocks && i0 < row.bulkEnd; i0 += kBlock) {
+            i0 = std::min(i0, row.bulkEnd - kBlock);
+            Block sx = {}, sy = {}, sz = {};
+            for (const Incidence& in : row.incidences) {
+                const std::int32_t b = in.inLayerAtZero + i0;
+                sx += in.sign * loadBlock(g.x(in.layer) + b), sy += in.sign * loadBlock(g.y(in.layer) + b),
+                    sz += in.sign * loadBlock(g.z(in.layer) + b);
+            }
+            storeBlock(sx, fx + i0), storeBlock(sy, fy + i0), storeBlock(sz, fz + i0);
         }
+        auto ends = [&](int begin, int end) {
+            for (int i = begin; i < end; ++i) {
+                double sx = 0, sy = 0, sz = 0;
+                for (const Incidence& in : row.incidences) {
+                    if (i < in.begin || i >= in.end) continue;
+                    const std::int32_t b = in.inLayerAtZero + i;
+                    sx += in.sign * g.x(in.layer)[b], sy += in.sign * g.y(in.layer)[b], sz += in.sign * g.z(in.layer)[b];
+                }
+                fx[i] = sx, fy[i] = sy, fz[i] = sz;
+            }
+        };
+        if (blocks) ends(0, row.bulkBegin), ends(row.bulkEnd, row.count);
+        else ends(0, row.count);
     }
 }
 

@@ -1,11 +1,10 @@
 // Internal forces of the lattice, in two steps that share no writes:
 //   1. bars: every bar computes the force g it exerts on its A node (its B
 //      node gets -g) and updates its damage; rows of bars that are all
-//      elastic take a fast path without the law's state and division (the
-//      row functor of laws/BarLaw.hpp; with laws/Hillerborg.hpp on the 48^3
-//      cube, one thread, the bar pass went from 2.36 to 1.71 ns per bar,
-//      medians of 5 interleaved runs);
-//   2. nodes: every node sums the +-g of its bars in a fixed order.
+//      elastic take a fast path without the law's state, square root or
+//      division (the row functor of laws/BarLaw.hpp: elasticBarForce);
+//   2. nodes: every node sums the +-g of its bars in a fixed order, a block
+//      of nodes at a time in registers (InternalForces.cpp, Block.hpp).
 // Both stream along rows of the regular lattice (see Lattice.hpp), so the
 // inner loops are plain vectorizable loops over contiguous arrays. They are
 // interleaved layer by layer along z: a node layer is summed right after the
@@ -59,7 +58,7 @@ template <class Law>
 void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers& g, const Law& law) {
     for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
         const BarRow& row = lat.barRows[r];
-        const BarFamily& fam = lat.families[row.family];
+        const BarFamily fam = lat.families[row.family];  // a copy: the stores to g cannot alias it
         const double *ax = &u.x[row.nodeA], *ay = &u.y[row.nodeA], *az = &u.z[row.nodeA];
         const double *bx = &u.x[row.nodeB], *by = &u.y[row.nodeB], *bz = &u.z[row.nodeB];
         double *gx = g.x(m) + row.inLayer, *gy = g.y(m) + row.inLayer, *gz = g.z(m) + row.inLayer;

@@ -218,7 +218,7 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
     auto add = [&](BarKind kind, NodeKind a, NodeKind b, std::array<int, 3> off, std::array<int, 3> box, int axis,
                    std::array<double, 3> d0, double area, double Af) {
         const double L = std::sqrt(d0[0] * d0[0] + d0[1] * d0[1] + d0[2] * d0[2]);
-        lat.families.push_back({kind, a, b, off, box, axis, d0, L, m.E * area, Af});
+        lat.families.push_back({kind, a, b, off, box, axis, d0, L, 1 / L, 1 / (L * L), m.E * area, Af});
     };
     for (int a = 0; a < 3; ++a) {  // edges along axis a: corner -> corner + e_a
         std::array<int, 3> off{0, 0, 0}, box{nx + 1, ny + 1, nz + 1};
@@ -315,6 +315,10 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
                     }
                 }
             }
+            row.bulkBegin = 0, row.bulkEnd = row.count;
+            for (const Incidence& in : row.incidences)
+                row.bulkBegin = std::max(row.bulkBegin, in.begin), row.bulkEnd = std::min(row.bulkEnd, in.end);
+            if (row.bulkEnd <= row.bulkBegin) row.bulkBegin = row.bulkEnd = 0;
             lat.nodeRows.push_back(std::move(row));
         }
         lat.nodeLayerStart[m + 1] = std::int32_t(lat.nodeRows.size());

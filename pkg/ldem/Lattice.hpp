@@ -50,6 +50,7 @@ struct BarFamily {
     int axis;                    // edge families: the bar's direction (0, 1, 2); else -1
     std::array<double, 3> d0;    // reference vector A -> B [m]
     double L;                    // initial length [m]
+    double invL, invL2;          // 1/L, 1/L^2 (the elastic fast path: laws/BarLaw.hpp)
     double EA;                   // axial stiffness of a full (interior) bar [N]
     double Af;                   // fracture area of a full bar [m^2]
 };
@@ -77,6 +78,9 @@ struct Incidence {
 struct NodeRow {
     std::int32_t first, count;
     std::vector<Incidence> incidences;  // in a fixed order: the summation order of a node's bars
+    // The nodes [bulkBegin, bulkEnd) meet a bar of every incidence (all but the
+    // row's end nodes, in a full box); empty if the row's segments leave no such node.
+    std::int32_t bulkBegin = 0, bulkEnd = 0;
 };
 
 struct Lattice {

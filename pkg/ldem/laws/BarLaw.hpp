@@ -26,6 +26,7 @@
 //   rowLaw(p, fam, EA, dux, duy, duz, gx, gy, gz)   the full law: the same, with damage.
 // du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
 #pragma once
+#include <algorithm>
 #include <cmath>
 
 #include "ldem/Lattice.hpp"
@@ -59,6 +60,38 @@ inline BarStretch barStretch(const BarFamily& fam, double dux, double duy, doubl
     const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
     const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
     return {dx, dy, dz, l, n, 1 / ((l + fam.L) * fam.L * l)};
+}
+
+// The elastic fast path of the laws that are linear elastic up to a strain
+// eps_p (both laws here), without a square root or a division: with
+//   x = (l^2 - L^2) / L^2 = n / L^2,   l = L sqrt(1 + x),   eps = sqrt(1 + x) - 1,
+//   F/l = EA eps / l = (EA/L) (1 - (1 + x)^(-1/2)) = (EA/L) x h(x),
+//   h(x) = 1/2 - 3/8 x + 5/16 x^2 - 35/128 x^3 + 63/256 x^4 - 231/1024 x^5 + 429/2048 x^6 - ...
+// (the binomial series). Cut after x^6, h is off by less than 0.4 |x|^7 of
+// itself: below 1e-17 for |x| <= kElasticSeriesLimit (|eps| <= 2e-3), far
+// beyond any elastic strain of concrete in tension; a bar beyond it sends its
+// row to the law's exact path. The square root and the division cost about as
+// much as the rest of the bar (README, Performance).
+constexpr double kElasticSeriesLimit = 4e-3;
+
+inline double elasticSeries(double x) {
+    return 0.5 + x * (-0.375 + x * (0.3125 + x * (-0.2734375 + x * (0.24609375 + x * (-0.2255859375 +
+                                                                                     x * 0.20947265625)))));
+}
+
+// x of eps_p: eps > eps_p  <=>  x > (1 + eps_p)^2 - 1.
+inline double stretchOfStrain(double eps) { return eps * (2 + eps); }
+
+// Writes in g the force on node A of an elastic bar (tension pulls A along +d)
+// and returns a number > 0 if the bar may not be elastic (x above xP, the
+// stretch of eps_p) or is beyond the series: laws/BarLaw.hpp's rowLaw.elastic.
+inline double elasticBarForce(const BarFamily& fam, double EA, double xP, double dux, double duy, double duz,
+                              double& gx, double& gy, double& gz) {
+    const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
+    const double x = n * fam.invL2;
+    const double Fl = EA * fam.invL * x * elasticSeries(x);
+    gx = Fl * (fam.d0[0] + dux), gy = Fl * (fam.d0[1] + duy), gz = Fl * (fam.d0[2] + duz);
+    return std::max(x - xP, std::abs(x) - kElasticSeriesLimit);
 }
 
 }  // namespace ldem

@@ -132,12 +132,13 @@ public:
         }
     }
 
-    // The row functor (laws/BarLaw.hpp): elastic while max(kappa, eps) <= eps_p.
+    // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
+    // never softened has kappa = 0 throughout: its fast path needs no state).
     struct Rows {
         double* kappa;
         const double* epsK;
         const double* epsR;
-        double epsP, sK;
+        double epsP, sK, xP;  // xP: the stretch x of eps_p (laws/BarLaw.hpp)
         std::uint8_t* softeningRow;
 
         Rows forRow(std::int32_t r, std::int64_t first) const {
@@ -148,12 +149,9 @@ public:
         bool softening() const { return *softeningRow; }
         void markSoftening() const { *softeningRow = 1; }
 
-        double elastic(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
+        double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                        double& gy, double& gz) const {
-            const BarStretch s = barStretch(fam, dux, duy, duz);
-            const double Fl = EA * s.n * s.w;  // tension pulls node A along +d
-            gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return bilinear::updateDamage(kappa[p], s.strain()) - epsP;
+            return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
         void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                         double& gy, double& gz) const {
@@ -165,7 +163,7 @@ public:
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
         }
     };
-    Rows rows() { return {kappa.data(), epsK.data(), epsR.data(), epsP, sK, softening.data()}; }
+    Rows rows() { return {kappa.data(), epsK.data(), epsR.data(), epsP, sK, stretchOfStrain(epsP), softening.data()}; }
 
     double force(std::int64_t b, double EA, double eps) const {
         return bilinear::bilinearForce(eps, kappa[b], EA, epsP, sK, epsK[b], epsR[b]);

@@ -124,11 +124,12 @@ public:
         }
     }
 
-    // The row functor (laws/BarLaw.hpp): elastic while max(kappa, eps) <= eps_p.
+    // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
+    // never softened has kappa = 0 throughout: its fast path needs no state).
     struct Rows {
         double* kappa;
         const double* epsR;
-        double epsP;
+        double epsP, xP;  // xP: the stretch x of eps_p (laws/BarLaw.hpp)
         std::uint8_t* softeningRow;
 
         Rows forRow(std::int32_t r, std::int64_t first) const {
@@ -139,13 +140,9 @@ public:
         bool softening() const { return *softeningRow; }
         void markSoftening() const { *softeningRow = 1; }
 
-        double elastic(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
+        double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                        double& gy, double& gz) const {
-            const BarStretch s = barStretch(fam, dux, duy, duz);
-            // Tension (F > 0) pulls node A towards node B: along +d.
-            const double Fl = EA * s.n * s.w;
-            gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return hillerborg::updateDamage(kappa[p], s.strain()) - epsP;
+            return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
         void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                         double& gy, double& gz) const {
@@ -157,7 +154,7 @@ public:
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
         }
     };
-    Rows rows() { return {kappa.data(), epsR.data(), epsP, softening.data()}; }
+    Rows rows() { return {kappa.data(), epsR.data(), epsP, stretchOfStrain(epsP), softening.data()}; }
 
     // Bar b alone, at strain eps, with the damage of the last force evaluation.
     double force(std::int64_t b, double EA, double eps) const {
