@@ -109,19 +109,15 @@ namespace {
 // The undamaged, small-displacement stiffness as a bar law (never inelastic):
 // force on node A of a bar of stiffness EA/L, negated for K x: -(EA/L)(n.du)n.
 struct LinearBars {
+    static constexpr bool kElasticOnly = true;  // barLayer never takes the law's paths
     LinearBars forRow(std::int32_t, std::int64_t) const { return *this; }
-    bool softening() const { return false; }
-    void markSoftening() const {}
-    double elastic(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
+    std::uint8_t path() const { return kElasticPath; }
+    double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                    double& gy, double& gz) const {
-        (*this)(p, fam, EA, dux, duy, duz, gx, gy, gz);
-        return -1;
-    }
-    void operator()(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                    double& gy, double& gz) const {
         const double n[3] = {fam.d0[0] / fam.L, fam.d0[1] / fam.L, fam.d0[2] / fam.L};
         const double s = -EA / fam.L * (n[0] * dux + n[1] * duy + n[2] * duz);
         gx = s * n[0], gy = s * n[1], gz = s * n[2];
+        return -1;
     }
 };
 }  // namespace

@@ -52,6 +52,34 @@ private:
     std::vector<double*> base_;  // per layer
 };
 
+// The bars of a row whose path is the law's (laws/BarLaw.hpp: RowPath), n of
+// them, from the displacements at their ends; the row moves on to the exact
+// path once a bar is beyond the series.
+template <class Law>
+void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, std::int64_t n, double EA, double EAend,
+            const double* ax, const double* ay, const double* az, const double* bx, const double* by,
+            const double* bz, double* gx, double* gy, double* gz) {
+    if (path == kSeriesPath) {  // still within the series? (reads u only: the law's state is not touched twice)
+        double xMax = 0;
+#pragma omp simd reduction(max : xMax)
+        for (std::int64_t p = 0; p < n; ++p)
+            xMax = std::max(xMax, std::abs(stretchN(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]) * fam.invL2));
+        if (xMax > kElasticSeriesLimit) path = kExactPath;
+    }
+    rowLaw.setPath(path);
+    if (path == kSeriesPath) {
+#pragma omp simd
+        for (std::int64_t p = 0; p < n; ++p)
+            rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA,
+                   seriesStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]), gx[p], gy[p], gz[p]);
+    } else {
+#pragma omp simd
+        for (std::int64_t p = 0; p < n; ++p)
+            rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA, barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]),
+                   gx[p], gy[p], gz[p]);
+    }
+}
+
 // Calls the bar law's row functor (laws/BarLaw.hpp) for every bar of layer m, writing the force
 // on its A node into the layer's g.
 template <class Law>
@@ -65,7 +93,8 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
         const int n = row.count;
         const double EA = fam.EA * row.share, EAend = fam.EA * row.endShare;
         const Law rowLaw = law.forRow(r, row.first);
-        if (!rowLaw.softening()) {
+        std::uint8_t path = rowLaw.path();
+        if (path == kElasticPath) {
             // (a max reduction over doubles: measured faster than an int | reduction;
             // a 64-bit index: one vector of doubles per iteration, where an int index
             // made the compiler take 16 bars at once and rows of 12 to 25 bars
@@ -76,12 +105,9 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
                 excess = std::max(excess, rowLaw.elastic(p, fam, (p == 0 || p == n - 1) ? EAend : EA, bx[p] - ax[p],
                                                          by[p] - ay[p], bz[p] - az[p], gx[p], gy[p], gz[p]));
             if (excess <= 0) continue;
-            rowLaw.markSoftening();
+            path = kSeriesPath;
         }
-#pragma omp simd
-        for (std::int64_t p = 0; p < n; ++p)
-            rowLaw(p, fam, (p == 0 || p == n - 1) ? EAend : EA, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p], gx[p],
-                   gy[p], gz[p]);
+        if constexpr (!Law::kElasticOnly) lawRow(rowLaw, path, fam, n, EA, EAend, ax, ay, az, bx, by, bz, gx, gy, gz);
     }
 }
 

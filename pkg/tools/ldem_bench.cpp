@@ -46,7 +46,7 @@ double secondsPerStep(ldem::Simulation& sim, int steps) {
 std::int64_t softeningRows(const ldem::Simulation& sim, const ldem::Comm& comm) {
     std::int64_t rows = 0;
     std::visit([&](const auto& law) {
-        for (std::uint8_t r : law.softeningRows()) rows += r;
+        for (std::uint8_t r : law.softeningRows()) rows += r != 0;
     }, sim.law());
     return comm.sum(rows);
 }

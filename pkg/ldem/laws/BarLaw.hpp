@@ -18,16 +18,18 @@
 // The row functor: for bar row r, whose bars are first, first + 1, ...,
 // rows().forRow(r, first) gives the law of that row (state pointers advanced,
 // so that the loops index them from 0):
-//   rowLaw.softening()     true once some bar of the row has left the elastic range;
-//   rowLaw.markSoftening() marks it so;
+//   rowLaw.path()          the row's RowPath (below), kept by the law (checkpointed);
+//   rowLaw.setPath(path)   moves the row on to a slower path (never back);
 //   rowLaw.elastic(p, fam, EA, dux, duy, duz, gx, gy, gz)   writes in g the force
 //       on bar p's A node as if the bar were elastic, and returns a number > 0
-//       if it may not be (the row then goes through the full law and is marked softening);
-//   rowLaw(p, fam, EA, dux, duy, duz, gx, gy, gz)   the full law: the same, with damage.
+//       if it may not be (the row then goes through the law);
+//   rowLaw(p, EA, s, gx, gy, gz)   the law with damage, from the bar's stretch s
+//       (a SeriesStretch or a BarStretch: strain() and elasticForcePerLength(EA)).
 // du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include "ldem/Lattice.hpp"
 
@@ -42,56 +44,79 @@ inline DamageState damageState(double kappa, double epsP, double epsR) {
     return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
 }
 
+// The path of a row of bars through the force loop (InternalForces.hpp): the
+// elastic fast path while every bar is elastic; then the law, from the
+// series stretch while every bar's |x| is within kElasticSeriesLimit; else
+// the law from the exact stretch. A row only moves on to a slower path.
+enum RowPath : std::uint8_t { kElasticPath = 0, kSeriesPath = 1, kExactPath = 2 };
+
 // The stretch of a bar from its reference vector d0 (length L) and the
 // relative displacement du of its ends, without cancellation:
-//   n = l^2 - L^2 = 2 d0.du + du.du   =>   eps = (l - L)/L = n / ((l + L) L).
-// One division serves the strain and the force per unit length F/l, which
-// turns the force into its components (F d/l):
-//   w = 1 / ((l + L) L l),   eps = n w l,   F/l = EA eps r / l = EA n w r,
-// with r = F/(EA eps) the law's force ratio (1 while the bar is elastic).
+//   n = l^2 - L^2 = 2 d0.du + du.du,   x = n / L^2 = (l/L)^2 - 1,
+//   l = L sqrt(1 + x),   eps = (l - L)/L = sqrt(1 + x) - 1,
+//   F/l = EA eps r / l,  r = F/(EA eps) the law's force ratio (1 while the bar is elastic).
+inline double stretchN(const BarFamily& fam, double dux, double duy, double duz) {
+    return 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
+}
+
+// Exact, with one square root and one division for both the strain and F/l:
+//   w = 1 / ((l + L) L l),   eps = n / ((l + L) L) = n w l,   EA eps / l = EA n w.
 struct BarStretch {
     double dx, dy, dz;  // current bar vector d0 + du [m]
     double l, n, w;
     double strain() const { return n * w * l; }
+    double elasticForcePerLength(double EA) const { return EA * n * w; }
 };
 
 inline BarStretch barStretch(const BarFamily& fam, double dux, double duy, double duz) {
     const double dx = fam.d0[0] + dux, dy = fam.d0[1] + duy, dz = fam.d0[2] + duz;
     const double l = std::sqrt(dx * dx + dy * dy + dz * dz);
-    const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
-    return {dx, dy, dz, l, n, 1 / ((l + fam.L) * fam.L * l)};
+    return {dx, dy, dz, l, stretchN(fam, dux, duy, duz), 1 / ((l + fam.L) * fam.L * l)};
 }
 
-// The elastic fast path of the laws that are linear elastic up to a strain
-// eps_p (both laws here), without a square root or a division: with
-//   x = (l^2 - L^2) / L^2 = n / L^2,   l = L sqrt(1 + x),   eps = sqrt(1 + x) - 1,
-//   F/l = EA eps / l = (EA/L) (1 - (1 + x)^(-1/2)) = (EA/L) x h(x),
-//   h(x) = 1/2 - 3/8 x + 5/16 x^2 - 35/128 x^3 + 63/256 x^4 - 231/1024 x^5 + 429/2048 x^6 - ...
-// (the binomial series). Cut after x^6, h is off by less than 0.4 |x|^7 of
-// itself: below 1e-17 for |x| <= kElasticSeriesLimit (|eps| <= 2e-3), far
-// beyond any elastic strain of concrete in tension; a bar beyond it sends its
-// row to the law's exact path. The square root and the division cost about as
-// much as the rest of the bar (README, Performance).
+// Without a square root or a division, for |x| <= kElasticSeriesLimit:
+//   EA eps / l = (EA/L) (1 - (1 + x)^(-1/2)) = (EA/L) x h(x),   eps = sqrt(1 + x) - 1 = x e(x),
+//   h(x) = 1/2 - 3/8 x + 5/16 x^2 - 35/128 x^3 + 63/256 x^4 - 231/1024 x^5 + 429/2048 x^6 - ...,
+//   e(x) = 1/2 - 1/8 x + 1/16 x^2 - 5/128 x^3 + 7/256 x^4 - 21/1024 x^5 + 33/2048 x^6 - ...
+// (binomial series). Cut after x^6, h is off by less than 0.4 |x|^7 of itself
+// and e by less than 0.03 |x|^7: below 1e-17 for |x| <= 4e-3 (|eps| <= 2e-3),
+// beyond any strain of an unbroken bar of concrete in tension. The square root
+// and the divisions cost about as much as the rest of the bar (README, Performance).
 constexpr double kElasticSeriesLimit = 4e-3;
 
 inline double elasticSeries(double x) {
     return 0.5 + x * (-0.375 + x * (0.3125 + x * (-0.2734375 + x * (0.24609375 + x * (-0.2255859375 +
                                                                                      x * 0.20947265625)))));
 }
+inline double strainSeries(double x) {
+    return 0.5 + x * (-0.125 + x * (0.0625 + x * (-0.0390625 + x * (0.02734375 + x * (-0.0205078125 +
+                                                                                    x * 0.01611328125)))));
+}
+
+struct SeriesStretch {
+    double dx, dy, dz;  // current bar vector d0 + du [m]
+    double x, invL;  // the stretch x; 1/L
+    double strain() const { return x * strainSeries(x); }
+    double elasticForcePerLength(double EA) const { return EA * invL * x * elasticSeries(x); }
+};
+
+inline SeriesStretch seriesStretch(const BarFamily& fam, double dux, double duy, double duz) {
+    return {fam.d0[0] + dux, fam.d0[1] + duy, fam.d0[2] + duz, stretchN(fam, dux, duy, duz) * fam.invL2, fam.invL};
+}
 
 // x of eps_p: eps > eps_p  <=>  x > (1 + eps_p)^2 - 1.
 inline double stretchOfStrain(double eps) { return eps * (2 + eps); }
 
-// Writes in g the force on node A of an elastic bar (tension pulls A along +d)
-// and returns a number > 0 if the bar may not be elastic (x above xP, the
-// stretch of eps_p) or is beyond the series: laws/BarLaw.hpp's rowLaw.elastic.
+// The elastic fast path of the laws that are linear elastic up to a strain
+// eps_p (both laws here): writes in g the force on node A of an elastic bar
+// (tension pulls A along +d) and returns a number > 0 if the bar may not be
+// elastic (x above xP, the stretch of eps_p) or is beyond the series: rowLaw.elastic.
 inline double elasticBarForce(const BarFamily& fam, double EA, double xP, double dux, double duy, double duz,
                               double& gx, double& gy, double& gz) {
-    const double n = 2 * (fam.d0[0] * dux + fam.d0[1] * duy + fam.d0[2] * duz) + dux * dux + duy * duy + duz * duz;
-    const double x = n * fam.invL2;
-    const double Fl = EA * fam.invL * x * elasticSeries(x);
-    gx = Fl * (fam.d0[0] + dux), gy = Fl * (fam.d0[1] + duy), gz = Fl * (fam.d0[2] + duz);
-    return std::max(x - xP, std::abs(x) - kElasticSeriesLimit);
+    const SeriesStretch s = seriesStretch(fam, dux, duy, duz);
+    const double Fl = s.elasticForcePerLength(EA);
+    gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
+    return std::max(s.x - xP, std::abs(s.x) - kElasticSeriesLimit);
 }
 
 }  // namespace ldem

@@ -110,7 +110,7 @@ public:
     std::vector<double> epsK;  // kink strain of each bar
     std::vector<double> epsR;  // strain of zero force of each bar
     std::vector<double> kappa;  // largest strain, recorded once past eps_p
-    std::vector<std::uint8_t> softening;  // per bar row: 1 once some bar passed eps_p
+    std::vector<std::uint8_t> softening;  // per bar row: its RowPath (laws/BarLaw.hpp)
 
     BilinearLaw() = default;
     // Undamaged bars of lat of material m, each bar's kink and end from its G_F
@@ -133,8 +133,9 @@ public:
     }
 
     // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
-    // never softened has kappa = 0 throughout: its fast path needs no state).
+    // never left the elastic path has kappa = 0 throughout: the fast path needs no state).
     struct Rows {
+        static constexpr bool kElasticOnly = false;  // (InternalForces.hpp: barLayer)
         double* kappa;
         const double* epsK;
         const double* epsR;
@@ -146,20 +147,19 @@ public:
             row.kappa += first, row.epsK += first, row.epsR += first, row.softeningRow += r;
             return row;
         }
-        bool softening() const { return *softeningRow; }
-        void markSoftening() const { *softeningRow = 1; }
+        std::uint8_t path() const { return *softeningRow; }
+        void setPath(std::uint8_t path) const { *softeningRow = path; }
 
         double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                        double& gy, double& gz) const {
             return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
-        void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                        double& gy, double& gz) const {
-            const BarStretch s = barStretch(fam, dux, duy, duz);
+        template <class Stretch>
+        void operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
             const double eps = s.strain();
             const double k = bilinear::updateDamage(kappa[p], eps);
             kappa[p] = k > epsP ? k : kappa[p];
-            const double Fl = EA * s.n * s.w * bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
+            const double Fl = s.elasticForcePerLength(EA) * bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
         }
     };

@@ -100,7 +100,7 @@ public:
     // Damage: the largest strain reached, recorded once it passes eps_p (the
     // law does not depend on it below eps_p, so elastic bars never write it).
     std::vector<double> kappa;
-    // Per bar row: 1 once some bar of the row has passed eps_p.
+    // Per bar row: its RowPath (laws/BarLaw.hpp), elastic until some bar of the row passes eps_p.
     std::vector<std::uint8_t> softening;
 
     HillerborgLaw() = default;
@@ -125,8 +125,9 @@ public:
     }
 
     // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
-    // never softened has kappa = 0 throughout: its fast path needs no state).
+    // never left the elastic path has kappa = 0 throughout: the fast path needs no state).
     struct Rows {
+        static constexpr bool kElasticOnly = false;  // (InternalForces.hpp: barLayer)
         double* kappa;
         const double* epsR;
         double epsP, xP;  // xP: the stretch x of eps_p (laws/BarLaw.hpp)
@@ -137,20 +138,19 @@ public:
             row.kappa += first, row.epsR += first, row.softeningRow += r;
             return row;
         }
-        bool softening() const { return *softeningRow; }
-        void markSoftening() const { *softeningRow = 1; }
+        std::uint8_t path() const { return *softeningRow; }
+        void setPath(std::uint8_t path) const { *softeningRow = path; }
 
         double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
                        double& gy, double& gz) const {
             return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
-        void operator()(std::int64_t p, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                        double& gy, double& gz) const {
-            const BarStretch s = barStretch(fam, dux, duy, duz);
+        template <class Stretch>
+        void operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
             const double eps = s.strain();
             const double k = hillerborg::updateDamage(kappa[p], eps);
             kappa[p] = k > epsP ? k : kappa[p];
-            const double Fl = EA * s.n * s.w * hillerborg::forceRatio(eps, k, epsP, epsR[p]);
+            const double Fl = s.elasticForcePerLength(EA) * hillerborg::forceRatio(eps, k, epsP, epsR[p]);
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
         }
     };
