@@ -61,6 +61,11 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     drive_.v0 = load_.strainRate * meas_.gaugeLength;
     drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
     drive_.speedup = load_.lossSpeedup;
+    if (load_.tailDrive == TailDrive::Adaptive && load_.tailMaxSpeedup < load_.lossSpeedup)
+        throw std::invalid_argument("tail_max_speedup (" + formatNumber(load_.tailMaxSpeedup) +
+                                    ") must be at least loss_speedup (" + formatNumber(load_.lossSpeedup) +
+                                    ") for the adaptive drive");
+    tail_ = AdaptiveDrive(load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailStep);
     if (openingControl() != (load_.openingRate > 0))
         throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
                                                      : "opening_rate needs a controlled probe (measure.control)");
@@ -217,7 +222,8 @@ void Simulation::finishStep() {
     // Under opening control the servo moves U from state n (its opening is that of state n).
     const double tNext = time_ + dt_, Uback = driveBefore(), Unow = driveNow();
     if (openingControl()) servo_.advance(dt_, time_, opening_, drive_);
-    const double Unext = openingControl() ? servo_.U : drive_.displacement(tNext);
+    else if (tail_.active()) tail_.advance(dt_, drive_.v0, int(step_ % recordEvery_), recordEvery_);
+    const double Unext = openingControl() ? servo_.U : tail_.active() ? tail_.U : drive_.displacement(tNext);
     const double centred = 0.5 * (Unext - Uback);
     // Per owned layer: damping work, external work, support reaction (state n);
     // one exchange of them per step, added in layer order: the same sums for
@@ -254,7 +260,8 @@ Checkpoint Simulation::checkpoint() const {
     if (!progress_.pendingAdvance && progress_.summary.stopReason.empty())
         throw std::logic_error("a checkpoint is taken at a record: from run()'s observer, or once run() returned");
     Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_,
-                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
+                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_, {}};
+    if (tail_.active()) c.tailDrive = tail_.state();
     std::visit([&](const auto& law) {
         for (const auto& [name, values] : law.arrays()) c.bars.emplace_back(name, *values);
         c.softening = law.softeningRows();
@@ -281,6 +288,8 @@ void Simulation::restore(const Checkpoint& c) {
     time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
     drive_.speedupStart = c.speedupStart, step_ = c.step;
     servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
+    tail_ = AdaptiveDrive(load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailStep);
+    if (!c.tailDrive.empty()) tail_.setState(c.tailDrive);
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
@@ -355,8 +364,11 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         const bool lost = g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken);
         if (!s.loadLoss.reached() && lost) {
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
-            drive_.speedupStart = time_;
+            if (load_.tailDrive == TailDrive::Fixed || openingControl()) drive_.speedupStart = time_;
+            else tail_.start(driveNow(), driveBefore(), drive_.velocityFactor(time_), p.fracture);
         }
+        // The adaptive drive picks the velocity of the next record interval from state n.
+        if (tail_.active()) tail_.record(p.fracture, p.stress, p.stressLoaded, s.peakStress);
         if (run_.stopAt == StopAt::Converged && s.loadLoss.reached() && !s.converged.reached() &&
             g.convergence.update(p.meanStrain, p.fracture, lost))
             s.converged = {p.step, p.time, p.meanStrain, p.fracture};
