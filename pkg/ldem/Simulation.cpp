@@ -65,7 +65,6 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         throw std::invalid_argument("tail_max_speedup (" + formatNumber(load_.tailMaxSpeedup) +
                                     ") must be at least loss_speedup (" + formatNumber(load_.lossSpeedup) +
                                     ") for the adaptive drive");
-    tail_ = AdaptiveDrive(load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailStep);
     if (openingControl() != (load_.openingRate > 0))
         throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
                                                      : "opening_rate needs a controlled probe (measure.control)");
@@ -77,6 +76,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * std::abs(meas_.meanDriveWeight));
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
+
+    tail_ = AdaptiveDrive(tailLimits());  // needs dt_, recordEvery_, splitWindow_
 
     // Random G_f -> the law's per-bar parameters (the field itself is not kept).
     {
@@ -288,7 +289,7 @@ void Simulation::restore(const Checkpoint& c) {
     time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
     drive_.speedupStart = c.speedupStart, step_ = c.step;
     servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
-    tail_ = AdaptiveDrive(load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailStep);
+    tail_ = AdaptiveDrive(tailLimits());
     if (!c.tailDrive.empty()) tail_.setState(c.tailDrive);
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
@@ -364,11 +365,14 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         const bool lost = g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken);
         if (!s.loadLoss.reached() && lost) {
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
-            if (load_.tailDrive == TailDrive::Fixed || openingControl()) drive_.speedupStart = time_;
-            else tail_.start(driveNow(), driveBefore(), drive_.velocityFactor(time_), p.fracture);
+            drive_.speedupStart = time_;
         }
-        // The adaptive drive picks the velocity of the next record interval from state n.
-        if (tail_.active()) tail_.record(p.fracture, p.stress, p.stressLoaded, s.peakStress);
+        // The adaptive drive: from the end of the fixed ramp to the floor on, it picks
+        // the velocity of the next record interval from state n.
+        if (load_.tailDrive == TailDrive::Adaptive && !openingControl() && !tail_.active() &&
+            s.loadLoss.reached() && time_ >= drive_.speedupStart + drive_.rampTime)
+            tail_.start(driveNow(), driveBefore(), p.fracture);
+        if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, s.peakStress);
         if (run_.stopAt == StopAt::Converged && s.loadLoss.reached() && !s.converged.reached() &&
             g.convergence.update(p.meanStrain, p.fracture, lost))
             s.converged = {p.step, p.time, p.meanStrain, p.fracture};

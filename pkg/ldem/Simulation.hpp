@@ -230,6 +230,13 @@ private:
     }
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
     double probe(const Probe& q) const;  // its reading at the current state [m]
+    AdaptiveDrive::Limits tailLimits() const {
+        // rho H v0 / T: the face stress of a unit change of S over a record, were a column of the
+        // specimen's height to follow the drive; D_f T its drag's share.
+        const double T = recordEvery_ * dt_;
+        return {load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailDrag, load_.tailStep,
+                splitWindow_,      mat_.rho * meas_.gaugeLength * drive_.v0 / T, Df_ * T};
+    }
     double advanceNodes(int layer);
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
