@@ -77,6 +77,7 @@ struct Drive {
 //   without it, 0.48 m seed 2: a factor of 1.1 per record from 20 to 60
 //   broke bars in the hanging cube and doubled U);
 // - never below S_f (the fixed drive's own rate is always allowed).
+// Undamped (zeta 0) the drive stays fixed (Simulation::run).
 // Within a record interval of R steps the velocity ramps linearly from S_0
 // (the factor at the record) to S_1:
 //   v_k = v0 (S_0 + (S_1 - S_0)(k + 1)/R),   k = 0..R-1 the step in the interval,
