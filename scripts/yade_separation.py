@@ -61,6 +61,7 @@ def main(argv):
     lp = _core.LoadingParams()
     lp.load = a.load
     lp.strain_rate = a.strain_rate
+    lp.tail_drive = "fixed"  # the bridge follows ldem's fixed drive past the load loss
     rp = _core.RunParams()
     rp.seed = a.seed
     rp.zeta = 0.0  # no damping: YADE's damping is not ldem's

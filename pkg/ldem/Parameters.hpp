@@ -61,8 +61,24 @@
       "lateral DOFs of the upper nodes: free or fixed")                                                        \
     X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),                \
       "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                             \
+    X(TailDrive, tailDrive, "tail_drive", TailDrive::Adaptive, "", Domain::choices({"fixed", "adaptive"}),      \
+      "the drive once the load is lost: fixed (loss_speedup times as fast, ramped in once), or adaptive "      \
+      "(ramped in to loss_speedup the same way, then faster while no bar softens and the chains are slack, "    \
+      "within bounds of drag and inertia: tail_max_speedup, tail_load, tail_drag, tail_step)")                 \
     X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                       \
-      "drive velocity factor once the load is lost (reaches separation in fewer steps)")                       \
+      "drive velocity factor once the load is lost; tail_drive adaptive: its floor, the factor it returns to "  \
+      "while bars soften")                                                                                     \
+    X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                              \
+      "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")             \
+    X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                             \
+      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at loss_speedup "   \
+      "(the chains are taut); below, at most loss_speedup x tail_load / (support stress / peak)")              \
+    X(double, tailDrag, "tail_drag", 0.1, "", Domain::open(0, 1),                                              \
+      "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "  \
+      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height")                      \
+    X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                        \
+      "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "    \
+      "over the record's steps")                                                                               \
     X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                     \
       "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
 

@@ -61,6 +61,10 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     drive_.v0 = load_.strainRate * meas_.gaugeLength;
     drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
     drive_.speedup = load_.lossSpeedup;
+    if (load_.tailDrive == TailDrive::Adaptive && load_.tailMaxSpeedup < load_.lossSpeedup)
+        throw std::invalid_argument("tail_max_speedup (" + formatNumber(load_.tailMaxSpeedup) +
+                                    ") must be at least loss_speedup (" + formatNumber(load_.lossSpeedup) +
+                                    ") for the adaptive drive");
     if (openingControl() != (load_.openingRate > 0))
         throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
                                                      : "opening_rate needs a controlled probe (measure.control)");
@@ -72,6 +76,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * std::abs(meas_.meanDriveWeight));
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
+
+    tail_ = AdaptiveDrive(tailLimits());  // needs dt_, recordEvery_, splitWindow_
 
     // Random G_f -> the law's per-bar parameters (the field itself is not kept).
     {
@@ -217,7 +223,8 @@ void Simulation::finishStep() {
     // Under opening control the servo moves U from state n (its opening is that of state n).
     const double tNext = time_ + dt_, Uback = driveBefore(), Unow = driveNow();
     if (openingControl()) servo_.advance(dt_, time_, opening_, drive_);
-    const double Unext = openingControl() ? servo_.U : drive_.displacement(tNext);
+    else if (tail_.active()) tail_.advance(dt_, drive_.v0, int(step_ % recordEvery_), recordEvery_);
+    const double Unext = openingControl() ? servo_.U : tail_.active() ? tail_.U : drive_.displacement(tNext);
     const double centred = 0.5 * (Unext - Uback);
     // Per owned layer: damping work, external work, support reaction (state n);
     // one exchange of them per step, added in layer order: the same sums for
@@ -254,7 +261,8 @@ Checkpoint Simulation::checkpoint() const {
     if (!progress_.pendingAdvance && progress_.summary.stopReason.empty())
         throw std::logic_error("a checkpoint is taken at a record: from run()'s observer, or once run() returned");
     Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_,
-                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_};
+                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_, {}};
+    if (tail_.active()) c.tailDrive = tail_.state();
     std::visit([&](const auto& law) {
         for (const auto& [name, values] : law.arrays()) c.bars.emplace_back(name, *values);
         c.softening = law.softeningRows();
@@ -281,6 +289,8 @@ void Simulation::restore(const Checkpoint& c) {
     time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
     drive_.speedupStart = c.speedupStart, step_ = c.step;
     servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
+    tail_ = AdaptiveDrive(tailLimits());
+    if (!c.tailDrive.empty()) tail_.setState(c.tailDrive);
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
@@ -357,6 +367,15 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
             s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
             drive_.speedupStart = time_;
         }
+        // The adaptive drive: from the end of the fixed ramp to the floor on, it picks
+        // the velocity of the next record interval from state n. Undamped (D_f = 0)
+        // the drive stays fixed: nothing would damp the ringing its changes of speed
+        // set off (measured, 0.08 m on rollers, zeta 0: balance error 0.015 against
+        // 0.008 fixed, and another path to separation).
+        if (load_.tailDrive == TailDrive::Adaptive && !openingControl() && Df_ > 0 && !tail_.active() &&
+            s.loadLoss.reached() && time_ >= drive_.speedupStart + drive_.rampTime)
+            tail_.start(driveNow(), driveBefore(), p.fracture);
+        if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, s.peakStress);
         if (run_.stopAt == StopAt::Converged && s.loadLoss.reached() && !s.converged.reached() &&
             g.convergence.update(p.meanStrain, p.fracture, lost))
             s.converged = {p.step, p.time, p.meanStrain, p.fracture};

@@ -132,6 +132,7 @@ struct Checkpoint {
     double servoU = 0, servoUprev = 0;  // the servo's drive displacement at t_n, t_n-1 (opening control)
     std::int64_t step = 0;
     RunProgress progress;
+    std::vector<double> tailDrive;  // AdaptiveDrive::state() (empty: not started)
 };
 
 // Thrown when the integration blows up (NaN, or energy created from nothing).
@@ -209,6 +210,7 @@ public:
     const Servo& servo() const { return servo_; }
     double splitWindow() const { return splitWindow_; }
     const Drive& drive() const { return drive_; }
+    const AdaptiveDrive& adaptiveDrive() const { return tail_; }
     std::int64_t clampedBars() const { return clamped_; }
     // Bars and nodes of the whole lattice (of all ranks' slabs under MPI).
     std::int64_t totalBars() const { return totalBars_; }
@@ -218,11 +220,23 @@ public:
     double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
 
 private:
-    // The drive's displacement U at t_n and at t_n-1: the program's, or the servo's state.
-    double driveNow() const { return openingControl() ? servo_.U : drive_.displacement(time_); }
-    double driveBefore() const { return openingControl() ? servo_.Uprev : drive_.displacement(time_ - dt_); }
+    // The drive's displacement U at t_n and at t_n-1: the program's, or the
+    // servo's state, or the adaptive drive's state once the load is lost.
+    double driveNow() const {
+        return openingControl() ? servo_.U : tail_.active() ? tail_.U : drive_.displacement(time_);
+    }
+    double driveBefore() const {
+        return openingControl() ? servo_.Uprev : tail_.active() ? tail_.Uprev : drive_.displacement(time_ - dt_);
+    }
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
     double probe(const Probe& q) const;  // its reading at the current state [m]
+    AdaptiveDrive::Limits tailLimits() const {
+        // rho H v0 / T: the face stress of a unit change of S over a record, were a column of the
+        // specimen's height to follow the drive; D_f T its drag's share.
+        const double T = recordEvery_ * dt_;
+        return {load_.lossSpeedup, load_.tailMaxSpeedup, load_.tailLoad, load_.tailDrag, load_.tailStep,
+                splitWindow_,      mat_.rho * meas_.gaugeLength * drive_.v0 / T, Df_ * T};
+    }
     double advanceNodes(int layer);
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
@@ -240,6 +254,7 @@ private:
     Frequencies freq_;
     Drive drive_;
     Servo servo_;
+    AdaptiveDrive tail_;  // tail_drive adaptive: active from the load loss on (displacement control only)
     double opening_ = 0;  // the controlled probe at the current state (opening control)
     BarLaws law_;
     Field3 u_, v_, f_;  // per node

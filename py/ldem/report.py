@@ -194,6 +194,17 @@ def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_ro
     write_report(out, cases, table, fits, figs, damping_rows, discussion, fmt)
 
 
+
+def _tail_drive(p: dict) -> str:
+    """The drive past its ramp after load loss, for the report's table (runs
+    before tail_drive was declared ran the fixed drive)."""
+    if p.get("tail_drive", "fixed") == "fixed":
+        return ""
+    return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
+            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}; "
+            "README, `ldem cube`)")
+
+
 def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=None, fmt="png") -> None:
     tests = [c.test for c in cases]
     first = cases[0].summary
@@ -218,7 +229,7 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
               ["load loss", "bars broke and the stress averaged over "
                             + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
                             + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
-                              f"{p.get('loss_speedup', 1):g} times"],
+                              f"{p.get('loss_speedup', 1):g} times" + _tail_drive(p)],
               ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
               ["threads per case", str(first["threads"])],
           ]), ""]

@@ -60,6 +60,7 @@ py::dict checkpointDict(const Checkpoint& c) {
                                                g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
                                                s.fractureEnergy, c.servoU, c.servoUprev});
     d["convergence"] = toNumpy(g.convergence.state());
+    d["tail_drive"] = toNumpy(c.tailDrive);  // the adaptive drive's state (empty before the load loss)
     d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
     d["load_loss"] = eventArray(s.loadLoss), d["separation"] = eventArray(s.separation);
     std::vector<double> window;
@@ -96,6 +97,7 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
     g.loadLoss.setRecords(records);
     g.convergence = EnergyConvergence(sim.runParams().convergedGrowth);
     if (d.contains("convergence")) g.convergence.setState(fromNumpy<double>(d["convergence"]));  // older: none
+    if (d.contains("tail_drive")) c.tailDrive = fromNumpy<double>(d["tail_drive"]);              // older: none
     g.started = true;
     return c;
 }

@@ -106,7 +106,8 @@ def test_separation_energy_is_at_least_the_cheapest_cut(size, load, rate, seed):
     cut separates the faces), and above the energy when the load was lost. The
     small triangular cubes do separate (by mean strains of 0.2 to 0.4): their
     hinge at the zero-displacement edge is one or two modules deep."""
-    s = ldem.CubeTest(size=size, load=load, strain_rate=rate, seed=seed).run().summary
+    # The uniform seed 3 hangs on long: the fixed drive separates it at mean strain 0.43, the adaptive one at 0.50.
+    s = ldem.CubeTest(size=size, load=load, strain_rate=rate, seed=seed, final_strain=1.0).run().summary
     assert s["stop_reason"] == "separated", s["stop_reason"]
     assert s["U_num_J"] >= s["U_mincut_J"]
     assert s["load_loss"]["fracture_energy_J"] < s["U_num_J"]
@@ -127,8 +128,11 @@ def test_run_that_does_not_separate_says_so():
 
 def test_undamped_cube_on_rollers_balances_energy_to_separation():
     """No damping, lower face on rollers (the case that created energy at the
-    old time step: error 0.096 on the 0.24 m cube): balance within 1 % to separation."""
+    old time step: error 0.096 on the 0.24 m cube): balance within 1 % to separation.
+    Undamped, the adaptive drive stays fixed after the load loss: the same run."""
     r = ldem.CubeTest(size=0.08, strain_rate=0.1, zeta=0.0, bottom_lateral="free", seed=1).run()
+    fixed = ldem.CubeTest(size=0.08, strain_rate=0.1, zeta=0.0, bottom_lateral="free", seed=1, tail_drive="fixed").run()
+    assert r.summary["steps"] == fixed.summary["steps"] and r.summary["U_num_J"] == fixed.summary["U_num_J"]
     assert r.summary["stop_reason"] == "separated"
     assert r.summary["energy_balance_error"] < 0.01
     assert r.curve["damping_J"][-1] == 0.0

@@ -5,7 +5,7 @@ Use inside YADE (``yade-double -n -x script.py``)::
 
     import ldem.yade
     from ldem import _core
-    lp = _core.LoadingParams(); rp = _core.RunParams(); rp.zeta = 0
+    lp = _core.LoadingParams(); lp.tail_drive = "fixed"; rp = _core.RunParams(); rp.zeta = 0
     sim = _core.Simulation(6, 6, 6, 0.02, _core.Material(), lp, rp)
     spec = ldem.yade.SimulationSpecimen(sim)         # fills YADE's O
     result = spec.run()                          # to separation, as sim.run() would
@@ -120,7 +120,7 @@ corner (0,0) and y at (nx,0) if bottom_lateral is "free"); upper face z prescrib
 u_z = w U(t) with w = 1 (uniform) or x0/width (triangular), x, y free unless
 top_lateral is "fixed". U(t) is ldem's Drive (smooth 1 - cos start over
 ramp_time, then v0 = strain_rate * height; once the load is lost, loss_speedup
-times faster, with the same smooth start: ``SimulationSpecimen.drive``, bit for bit
+times faster, with the same smooth start (tail_drive 'fixed'; the adaptive drive is ldem's own): ``SimulationSpecimen.drive``, bit for bit
 pkg/ldem/Loading.cpp's Drive::displacement). Each step, before the forces,
 the drive sets the upper nodes to z0 + w U(t_n) and their velocity to
 w (U(t_n+1) - U(t_n))/dt (YADE moves blocked DOFs with their velocity).

@@ -169,7 +169,8 @@ class SimulationSpecimen:
     # -- run -----------------------------------------------------------------
     def run(self, final_strain=None, stop_fraction=None, stop_at="separation", max_steps=None, callback=None):
         """Runs as ldem's Simulation.run: until separation (no chain of intact bars
-        joins the faces; the drive sped up by loss_speedup from the load loss on),
+        joins the faces; the drive sped up by loss_speedup from the load loss on: a
+        Simulation with tail_drive 'fixed', else ValueError),
         or with stop_at="load_loss" until the load-loss test (_core.LoadLossDetector:
         stress averaged over the split window < stop_fraction x peak, after bars
         broke), or until the mean strain reaches final_strain, or callback(row)
@@ -182,6 +183,9 @@ class SimulationSpecimen:
         separation_checks, curve (numpy array of step, time, mean_strain,
         stress_support, stress_loaded, damaged, broken: every step), guard_early,
         lost_bars."""
+        if stop_at != "load_loss" and self.sim.loading.tail_drive != "fixed":
+            raise ValueError("past the load loss the YADE bridge follows ldem's fixed drive only: build the "
+                             "Simulation with tail_drive='fixed' (the adaptive one is ldem's own)")
         if stop_at not in ("separation", "load_loss"):
             raise ValueError(f"unknown stop event '{stop_at}' (expected separation or load_loss)")
         defaults = _core.RunParams()
