@@ -90,6 +90,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         totalBars_ = commOf(lat_).sum(owned.second - owned.first), totalNodes_ = commOf(lat_).sum(nodes);
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
+    preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
     cd_ = CentralDifference(dt_, Df_);
     layerDamping_.assign(lat_.numLayers(), 0.0);
 }
@@ -229,16 +230,20 @@ void Simulation::finishStep() {
     // Per owned layer: damping work, external work, support reaction (state n);
     // one exchange of them per step, added in layer order: the same sums for
     // any number of threads and ranks (Slab.hpp).
+    // (Slab.hpp's addByLayer, with the layers of the nodes looked up once: partialSlot.)
     const int owned = lat_.ownEnd - lat_.ownBegin;
-    std::vector<double> partial(3 * std::size_t(owned), 0.0);
+    std::vector<double>& partial = stepPartials_;
+    partial.assign(3 * std::size_t(owned), 0.0);
     for (int i = 0; i < owned; ++i) partial[3 * std::size_t(i)] = layerDamping_[lat_.ownBegin + i];
-    addByLayer(lat_, partial, 3, 1, pre_.node.size(), [&](std::size_t k) { return pre_.node[k]; }, [&](std::size_t k) {
+    for (std::size_t k = 0; k < pre_.node.size(); ++k) {
         const int d = pre_.dim[k];
-        return -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
-    });
+        if (preSlot_[k] >= 0)
+            partial[3 * std::size_t(preSlot_[k]) + 1] +=
+                -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
+    }
     const std::vector<double>& fm = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
-    addByLayer(lat_, partial, 3, 2, support_->size(), [&](std::size_t k) { return (*support_)[k]; },
-               [&](std::size_t k) { return fm[(*support_)[k]]; });
+    for (std::size_t k = 0; k < support_->size(); ++k)
+        if (supportSlot_[k] >= 0) partial[3 * std::size_t(supportSlot_[k]) + 2] += fm[(*support_)[k]];
     const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 3);
     dampingWork_ += sums[0];
     externalWork_ += sums[1];

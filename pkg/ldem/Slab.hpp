@@ -87,6 +87,16 @@ void addByLayer(const Lattice& lat, std::vector<double>& partial, int K, int slo
     }
 }
 
+// For each node, its owned layer less ownBegin (the slot addByLayer adds it to), or -1.
+inline std::vector<std::int32_t> ownedLayerSlots(const Lattice& lat, const std::vector<std::int32_t>& nodes) {
+    std::vector<std::int32_t> slot(nodes.size());
+    for (std::size_t k = 0; k < nodes.size(); ++k) {
+        const int m = lat.layerOfNode(nodes[k]);
+        slot[k] = lat.owns(m) ? m - lat.ownBegin : -1;
+    }
+    return slot;
+}
+
 // The sum of those values over all ranks, layer by layer (a group's reactions, a probe).
 template <class Node, class Value>
 double listSum(const Lattice& lat, std::size_t count, Node node, Value value) {
