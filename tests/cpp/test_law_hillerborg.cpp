@@ -379,7 +379,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
     // some of its bars pass eps_p in it.
     for (int layer = lat.numLayers() / 2; layer < lat.numLayers(); ++layer)
         for (std::int32_t r = lat.barLayerStart[layer]; r < lat.barLayerStart[layer + 1]; ++r) {
-            if (layer < lat.numLayers() / 2 + 2 && r % 2 == 0) continue;
+            if (layer < lat.numLayers() / 2 + 3 && r % 2 == 0) continue;
             bars.softening[r] = 1;
             for (std::int64_t b = lat.barRows[r].first; b < lat.barRows[r].first + lat.barRows[r].count; ++b)
                 bars.kappa[b] = m.epsP + (epsR[b] - m.epsP) * hashedUniform(5, b, 2);
@@ -387,11 +387,11 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
     const std::vector<std::uint8_t> softening0 = bars.softening;
     const std::vector<double> kappa0 = bars.kappa;
     Field3 u(lat.numNodes()), f(lat.numNodes());
-    // An expansion growing with z from -1.2 eps_p to 2.8 eps_p (so that the lower
+    // An expansion growing with z from -1 eps_p to 2 eps_p (so that the lower
     // rows are elastic but for their damaged bars), with random displacements of
     // +-eps_p L0 on top.
     for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
-        const double s = m.epsP * (4 * x0[2][i] / 0.08 - 1.2), a = m.epsP * 0.02;
+        const double s = m.epsP * (3 * x0[2][i] / 0.08 - 1.0), a = m.epsP * 0.02;
         u.x[i] = s * x0[0][i] + a * (2 * hashedUniform(6, i, 0) - 1);
         u.y[i] = s * x0[1][i] + a * (2 * hashedUniform(6, i, 1) - 1);
         u.z[i] = s * x0[2][i] + a * (2 * hashedUniform(6, i, 2) - 1);
@@ -421,7 +421,7 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
         fmax = std::max(fmax, std::abs(F));
     }
     for (int r : regimes)
-        EXPECT_GT(r, int(nb / 15)) << "too few bars in some regime: " << regimes[0] << " " << regimes[1] << " "
+        EXPECT_GT(r, int(nb / 10)) << "too few bars in some regime: " << regimes[0] << " " << regimes[1] << " "
                                    << regimes[2] << " " << regimes[3] << " " << regimes[4];
     BarForceBuffers g;
     for (int pass = 0; pass < 2; ++pass) {  // the second with the rows already marked softening
