@@ -1,7 +1,5 @@
 #include "ldem/Integrator.hpp"
 
-#include <algorithm>
-
 #include "ldem/Block.hpp"
 #include "ldem/Slab.hpp"
 
