@@ -230,20 +230,16 @@ void Simulation::finishStep() {
     // Per owned layer: damping work, external work, support reaction (state n);
     // one exchange of them per step, added in layer order: the same sums for
     // any number of threads and ranks (Slab.hpp).
-    // (Slab.hpp's addByLayer, with the layers of the nodes looked up once: partialSlot.)
     const int owned = lat_.ownEnd - lat_.ownBegin;
     std::vector<double>& partial = stepPartials_;
     partial.assign(3 * std::size_t(owned), 0.0);
     for (int i = 0; i < owned; ++i) partial[3 * std::size_t(i)] = layerDamping_[lat_.ownBegin + i];
-    for (std::size_t k = 0; k < pre_.node.size(); ++k) {
+    addBySlot(partial, 3, 1, preSlot_, [&](std::size_t k) {
         const int d = pre_.dim[k];
-        if (preSlot_[k] >= 0)
-            partial[3 * std::size_t(preSlot_[k]) + 1] +=
-                -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
-    }
+        return -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
+    });
     const std::vector<double>& fm = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
-    for (std::size_t k = 0; k < support_->size(); ++k)
-        if (supportSlot_[k] >= 0) partial[3 * std::size_t(supportSlot_[k]) + 2] += fm[(*support_)[k]];
+    addBySlot(partial, 3, 2, supportSlot_, [&](std::size_t k) { return fm[(*support_)[k]]; });
     const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 3);
     dampingWork_ += sums[0];
     externalWork_ += sums[1];

@@ -97,6 +97,14 @@ inline std::vector<std::int32_t> ownedLayerSlots(const Lattice& lat, const std::
     return slot;
 }
 
+// addByLayer with the slots of ownedLayerSlots, looked up once (the time step's sums).
+template <class Value>
+void addBySlot(std::vector<double>& partial, int K, int slot, const std::vector<std::int32_t>& layerSlot,
+               Value value) {
+    for (std::size_t k = 0; k < layerSlot.size(); ++k)
+        if (layerSlot[k] >= 0) partial[std::size_t(layerSlot[k]) * K + slot] += value(k);
+}
+
 // The sum of those values over all ranks, layer by layer (a group's reactions, a probe).
 template <class Node, class Value>
 double listSum(const Lattice& lat, std::size_t count, Node node, Value value) {
