@@ -177,3 +177,27 @@ def test_ldem_study_refinement_end_to_end(tmp_path):
     ratio = table[2]["peak_stress_MPa_mean"] / table[0]["peak_stress_MPa_mean"]
     assert table[2]["peak_vs_fine"] == pytest.approx(ratio, rel=1e-4)
     assert os.path.exists(os.path.join(out, "refinement.png"))
+
+
+def test_a_refinement_study_extends_the_rows_of_an_earlier_one(tmp_path):
+    """A committed study keeps cases.csv, not its case folders: with
+    --earlier, its cases are not run again (no folder is made for them),
+    enter the tables as they were, and only the cases they lack are run."""
+    args = ["study", "refinement", "--sizes", "0.04", "--L0s", "0.02,0.01", "--corr-lengths", "0",
+            "--set", "final_strain=0.002", "--threads", "1", "--no-progress"]
+    first = str(tmp_path / "first")
+    assert run_cli(*args, "--out", first, "--seeds", "1").returncode == 0
+    earlier = os.path.join(first, "cases.csv")
+    old = ldem.study.read_csv(earlier)
+    out = str(tmp_path / "extended")
+    r = run_cli(*args, "--out", out, "--seeds", "2", "--earlier", earlier)
+    assert r.returncode == 0, r.stderr
+    assert _case_folders(out) == sorted(n for n in _case_folders(out) if "_s2_" in n) and len(_case_folders(out)) == 2
+    rows = ldem.study.read_csv(os.path.join(out, "cases.csv"))
+    assert [(x["module_m"], x["seed"]) for x in rows] == [(0.02, 1), (0.02, 2), (0.01, 1), (0.01, 2)]
+    assert [rows[0], rows[2]] == old    # kept as they were, wall times and commits included
+    assert [t["seeds"] for t in ldem.study.read_csv(os.path.join(out, "summary.csv"))] == [2, 2]
+    with open(os.path.join(out, "report.md")) as f:
+        assert "2 cases are rows of an earlier run's cases.csv" in f.read()
+    lost = run_cli(*args, "--out", str(tmp_path / "x"), "--earlier", str(tmp_path / "none.csv"))
+    assert lost.returncode == 2 and "--earlier" in lost.stderr and "no such file" in lost.stderr

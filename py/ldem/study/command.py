@@ -8,6 +8,7 @@ import time
 from typing import List, Sequence
 
 from ..helptext import HelpFormatter, add_output_flags
+from ..io import read_table
 from ..cube import CubeTest, settings
 from .beam_comparison import compare as compare_beams
 from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
@@ -147,6 +148,19 @@ def cmd_mesh(args) -> int:
     return 0
 
 
+def _earlier_rows(path: str) -> list:
+    """The rows of an earlier refinement run's cases.csv ([] without --earlier)."""
+    if not path:
+        return []
+    if not os.path.isfile(path):
+        raise ValueError(f"--earlier {path}: no such file (a cases.csv of an earlier refinement run)")
+    rows = read_table(path)
+    lacking = {"load", "size_m", "module_m", "corr_length_m", "seed", "zeta", "strain_rate"} - set(rows[0] if rows else ())
+    if lacking:
+        raise ValueError(f"--earlier {path}: not a refinement cases.csv (no column {', '.join(sorted(lacking))})")
+    return rows
+
+
 def cmd_refinement(args) -> int:
     sizes = _floats(args.sizes, "--sizes")
     grid = {s: (tuple(_floats(args.L0s, "--L0s")) if args.L0s else REFINEMENT.get(s, ())) for s in sizes}
@@ -160,7 +174,7 @@ def cmd_refinement(args) -> int:
                              _seeds(args), **common)
     _check_tests(tests)
     table = run_refinement(tests, args.out, run=not args.report_only, report=not args.no_report,
-                           fmt=args.figure_format, **_run_options(args))
+                           fmt=args.figure_format, earlier=_earlier_rows(args.earlier), **_run_options(args))
     print(f"refinement study: wrote {args.out}/cases.csv, summary.csv"
           + ("" if args.no_report else ", report.md and refinement.png"))
     for t in table:
@@ -268,6 +282,9 @@ def add_parser(sub) -> None:
                    help="correlation lengths of G_f [m] (0: one draw per bar)")
     r.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
     r.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
+    r.add_argument("--earlier", default="", metavar="CASES_CSV",
+                   help="cases.csv of an earlier run (a committed study keeps its tables, not its case folders): "
+                        "its cases are not run again and enter the tables as they are")
     r.set_defaults(func=cmd_refinement)
 
     b = kinds.add_parser("beams", help="the notched beams of Gregoire et al. (2013): runs, predictions, size effect",
