@@ -147,6 +147,16 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     fourth = run_cli(*args)
     assert "7 of 8 cases already finished" in fourth.stdout
     assert _results(out) == before    # the same seed gives the same specimen
+    # Extended from its tables alone: the laws and the 8 cases are the earlier run's, only seed 3 runs.
+    more = str(tmp_path / "more")
+    fifth = run_cli(*[a if a != out else more for a in args], "--seeds", "3", "--earlier", out)
+    assert fifth.returncode == 0, fifth.stderr
+    assert len(_case_folders(more)) == 4 and all("_s3" in n for n in _case_folders(more))
+    assert mesh.read_laws(more) == mesh.read_laws(out)
+    rows = ldem.study.read_csv(os.path.join(more, "cases.csv"))
+    assert len(rows) == 12 and [r for r in rows if r["seed"] < 3] == ldem.study.read_csv(os.path.join(out, "cases.csv"))
+    with open(os.path.join(more, "report.md")) as f:
+        assert "8 cases are rows of an earlier run's cases.csv" in f.read()
 
 
 @pytest.mark.parametrize("extra, message", [
@@ -157,6 +167,7 @@ def test_ldem_study_mesh_end_to_end_and_resumed(tmp_path):
     (["--reference", "/nonexistent"], "not a study folder"),
     (["--law-seeds", "1"], "--law-seeds must be at least 2"),
     (["--modules", "0.04", "--calibration-size", "0.12"], "must not be one of the cubes predicted"),
+    (["--modules", "0.04", "--earlier", "/nonexistent"], "--earlier /nonexistent: no laws.csv in it"),
 ])
 def test_bad_mesh_study_input_is_one_line(tmp_path, extra, message):
     r = run_cli("study", "mesh", "--out", str(tmp_path / "m"), "--sizes", "0.12", "--seeds", "1", *extra)
@@ -187,10 +198,9 @@ def test_a_refinement_study_extends_the_rows_of_an_earlier_one(tmp_path):
             "--set", "final_strain=0.002", "--threads", "1", "--no-progress"]
     first = str(tmp_path / "first")
     assert run_cli(*args, "--out", first, "--seeds", "1").returncode == 0
-    earlier = os.path.join(first, "cases.csv")
-    old = ldem.study.read_csv(earlier)
+    old = ldem.study.read_csv(os.path.join(first, "cases.csv"))
     out = str(tmp_path / "extended")
-    r = run_cli(*args, "--out", out, "--seeds", "2", "--earlier", earlier)
+    r = run_cli(*args, "--out", out, "--seeds", "2", "--earlier", first)
     assert r.returncode == 0, r.stderr
     assert _case_folders(out) == sorted(n for n in _case_folders(out) if "_s2_" in n) and len(_case_folders(out)) == 2
     rows = ldem.study.read_csv(os.path.join(out, "cases.csv"))
@@ -199,5 +209,5 @@ def test_a_refinement_study_extends_the_rows_of_an_earlier_one(tmp_path):
     assert [t["seeds"] for t in ldem.study.read_csv(os.path.join(out, "summary.csv"))] == [2, 2]
     with open(os.path.join(out, "report.md")) as f:
         assert "2 cases are rows of an earlier run's cases.csv" in f.read()
-    lost = run_cli(*args, "--out", str(tmp_path / "x"), "--earlier", str(tmp_path / "none.csv"))
-    assert lost.returncode == 2 and "--earlier" in lost.stderr and "no such file" in lost.stderr
+    lost = run_cli(*args, "--out", str(tmp_path / "x"), "--earlier", str(tmp_path / "none"))
+    assert lost.returncode == 2 and "--earlier" in lost.stderr and "no cases.csv in it" in lost.stderr

@@ -8,7 +8,6 @@ import time
 from typing import List, Sequence
 
 from ..helptext import HelpFormatter, add_output_flags
-from ..io import read_table
 from ..cube import CubeTest, settings
 from .beam_comparison import compare as compare_beams
 from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
@@ -17,7 +16,7 @@ from .beams import run_beams, series_tests, uniform_tests, write_predictions
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
-from .mesh import CALIBRATION_SIZE, COARSE_MODULES, MESH_SIZES, VARIANTS, run_mesh
+from .mesh import CALIBRATION_SIZE, COARSE_MODULES, MESH_SIZES, VARIANTS, read_earlier, run_mesh
 from .refinement import CORR_LENGTHS, REFINEMENT, refinement_tests, run_refinement
 from .size_effect import STUDY_SIZES, run_size_effect
 
@@ -136,7 +135,8 @@ def cmd_mesh(args) -> int:
     table = run_mesh(args.out, _floats(args.sizes, "--sizes"), _floats(args.modules, "--modules"), variants,
                      _loads(args.loads), _seeds(args), args.reference, run=not args.report_only,
                      report=not args.no_report, common=common, fmt=args.figure_format,
-                     calibration_size=args.calibration_size, law_seeds=args.law_seeds, **_run_options(args))
+                     calibration_size=args.calibration_size, law_seeds=args.law_seeds, earlier=args.earlier,
+                     **_run_options(args))
     print(f"mesh study: wrote {args.out}/laws.csv, cases.csv, summary.csv"
           + ("" if args.no_report else ", report.md and figures"))
     for t in table:
@@ -146,19 +146,6 @@ def cmd_mesh(args) -> int:
               + ("" if t["U_ratio_mean"] == "" else f", U_num/U_min {t['U_ratio_mean']:.3f}")
               + ("" if t["U_vs_fine"] == "" else f" ({t['U_vs_fine']:.3f} of fine)"))
     return 0
-
-
-def _earlier_rows(path: str) -> list:
-    """The rows of an earlier refinement run's cases.csv ([] without --earlier)."""
-    if not path:
-        return []
-    if not os.path.isfile(path):
-        raise ValueError(f"--earlier {path}: no such file (a cases.csv of an earlier refinement run)")
-    rows = read_table(path)
-    lacking = {"load", "size_m", "module_m", "corr_length_m", "seed", "zeta", "strain_rate"} - set(rows[0] if rows else ())
-    if lacking:
-        raise ValueError(f"--earlier {path}: not a refinement cases.csv (no column {', '.join(sorted(lacking))})")
-    return rows
 
 
 def cmd_refinement(args) -> int:
@@ -174,7 +161,7 @@ def cmd_refinement(args) -> int:
                              _seeds(args), **common)
     _check_tests(tests)
     table = run_refinement(tests, args.out, run=not args.report_only, report=not args.no_report,
-                           fmt=args.figure_format, earlier=_earlier_rows(args.earlier), **_run_options(args))
+                           fmt=args.figure_format, earlier=read_earlier(args.earlier), **_run_options(args))
     print(f"refinement study: wrote {args.out}/cases.csv, summary.csv"
           + ("" if args.no_report else ", report.md and refinement.png"))
     for t in table:
@@ -268,6 +255,10 @@ def add_parser(sub) -> None:
     m.add_argument("--calibration-size", dest="calibration_size", type=float, default=CALIBRATION_SIZE,
                    help="the cube on which the calibrated variant measures the coarse lattice against the fine [m]")
     m.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
+    m.add_argument("--earlier", default="", metavar="DIR",
+                   help="the folder of an earlier run (a committed study keeps its tables, not its case folders): "
+                        "its laws.csv gives the laws (no law cube runs) and the cases of its cases.csv are not run "
+                        "again and enter the tables as they are")
     m.set_defaults(func=cmd_mesh)
 
     r = kinds.add_parser("refinement", help="the same cubes with modules finer than the study's",
@@ -282,9 +273,9 @@ def add_parser(sub) -> None:
                    help="correlation lengths of G_f [m] (0: one draw per bar)")
     r.add_argument("--seeds", type=int, default=6, help="random specimens per case (seeds 1..N)")
     r.add_argument("--report-only", action="store_true", help="run nothing: tables and report of the finished cases")
-    r.add_argument("--earlier", default="", metavar="CASES_CSV",
-                   help="cases.csv of an earlier run (a committed study keeps its tables, not its case folders): "
-                        "its cases are not run again and enter the tables as they are")
+    r.add_argument("--earlier", default="", metavar="DIR",
+                   help="the folder of an earlier run (a committed study keeps its tables, not its case folders): "
+                        "the cases of its cases.csv are not run again and enter the tables as they are")
     r.set_defaults(func=cmd_refinement)
 
     b = kinds.add_parser("beams", help="the notched beams of Gregoire et al. (2013): runs, predictions, size effect",

@@ -42,7 +42,7 @@ from __future__ import annotations
 
 import math
 import os
-from typing import Dict, List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence, Tuple
 
 from .. import io
 from ..cube import CubeTest
@@ -185,6 +185,53 @@ def run_located(tests, out: str, references: Sequence[str] = (), run: bool = Tru
     return [(load_summary(d) if is_finished(d, t) else None, d) for t, (d, _) in zip(tests, dirs)]
 
 
+def finished_rows(tests: Sequence[CubeTest], roles: Sequence[tuple], out: str, references: Sequence[str] = (),
+                  earlier: Sequence[dict] = (), run: bool = True, **kw) -> Tuple[List[dict], int]:
+    """The cases.csv rows of the finished tests, in their order, and how many
+    of them are kept from `earlier`, the rows of an earlier run's cases.csv
+    (a committed study keeps its tables, not its case folders): those cases
+    are not run again and enter the tables as they are. roles: (role,
+    variant) per test; the others are found or run as run_located does."""
+    kept = {_row_key(r): r for r in earlier}
+    keys = [_test_key(t, variant) for t, (_, variant) in zip(tests, roles)]
+    fresh = iter(run_located([t for t, k in zip(tests, keys) if k not in kept], out, references, run=run, **kw))
+    rows = []
+    for k, (role, variant) in zip(keys, roles):
+        if k in kept:
+            rows.append(kept[k])
+            continue
+        s, folder = next(fresh)
+        if s is not None:
+            rows.append(mesh_row(role, variant, s, folder))
+    return rows, sum(k in kept for k in keys)
+
+
+def _test_key(t: CubeTest, variant: str) -> tuple:
+    """What tells a case from another in cases.csv: variant, load, seed, size,
+    module, correlation length, damping and strain rate."""
+    return _key(variant, t.load, t.seed, t.size, t.L0, t.corr_length, t.zeta, t.strain_rate)
+
+
+def _row_key(r: dict) -> tuple:
+    return _key(r["variant"], r["load"], r["seed"], r["size_m"], r["module_m"], r["corr_length_m"], r["zeta"],
+                r["strain_rate"])
+
+
+def _key(variant, load, seed, *numbers) -> tuple:
+    return (variant, load, int(seed)) + tuple(round(float(x), 12) for x in numbers)
+
+
+def read_earlier(folder: str, files: Sequence[str] = ("cases.csv",)) -> List[dict]:
+    """The rows of cases.csv in an earlier study folder ([] for no folder),
+    after checking that folder has every one of `files`."""
+    if not folder:
+        return []
+    for name in files:
+        if not os.path.isfile(os.path.join(folder, name)):
+            raise ValueError(f"--earlier {folder}: no {name} in it (the folder of an earlier run of this study)")
+    return io.read_table(os.path.join(folder, "cases.csv"))
+
+
 def mesh_row(role: str, variant: str, summary: dict, folder: str = "") -> dict:
     """case_row with the case's role (fine, coarse, law), variant, module and
     correlation length; `dir`, its folder, is not a column."""
@@ -240,13 +287,15 @@ def run_laws(modules, seeds: int, out: str, references=(), run: bool = True, cal
 def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIANTS, loads=("uniform", "triangular"),
              seeds: int = 6, references: Sequence[str] = (), run: bool = True, report: bool = True,
              common: Optional[dict] = None, fmt: str = "png", calibration_size: float = CALIBRATION_SIZE,
-             law_seeds: int = 6, **kw) -> List[dict]:
+             law_seeds: int = 6, earlier: str = "", **kw) -> List[dict]:
     """The whole study: the fine cubes of side L and their laws (laws.csv;
     law_seeds specimens each, whatever the seeds of the targets), the
     fine references (found in `references`, size-effect study folders, or run
     here), the coarse cases; cases.csv, summary.csv and (with report)
     report.md with its figures. With run False nothing is computed: the
-    tables cover the finished cases. Returns the summary rows."""
+    tables cover the finished cases. earlier: the folder of an earlier run,
+    whose laws.csv gives the laws (its law cubes are not run again) and whose
+    cases.csv rows are kept (finished_rows). Returns the summary rows."""
     common = dict(common or {})
     calibrate = "calibrated" in variants
     check_grid(sizes, modules)
@@ -254,17 +303,35 @@ def run_mesh(out: str, sizes=MESH_SIZES, modules=COARSE_MODULES, variants=VARIAN
         check_grid([calibration_size], modules)
         if any(math.isclose(calibration_size, s) for s in sizes):
             raise ValueError(f"the calibration cube ({calibration_size:g} m) must not be one of the cubes predicted")
-    laws = run_laws(modules, law_seeds, out, references, run=run, calibrate=calibrate, calibration_size=calibration_size,
-                    common=common, **kw)
+    done = read_earlier(earlier, ("laws.csv", "cases.csv"))
+    if earlier:
+        laws = earlier_laws(earlier, modules, calibrate, out)
+    else:
+        laws = run_laws(modules, law_seeds, out, references, run=run, calibrate=calibrate,
+                        calibration_size=calibration_size, common=common, **kw)
     fine = fine_tests(sizes, loads, seeds, **common)
     coarse = coarse_tests(sizes, modules, variants, loads, seeds, laws, **common)
-    summaries = run_located(fine + [t for _, t in coarse], out, references, run=run, **kw)
     roles = [("fine", "fine")] * len(fine) + [("coarse", v) for v, _ in coarse]
-    rows = [mesh_row(r, v, s, d) for (r, v), (s, d) in zip(roles, summaries) if s is not None]
+    rows, kept = finished_rows(fine + [t for _, t in coarse], roles, out, references, done, run=run, **kw)
     io.write_table(os.path.join(out, "cases.csv"), rows, MESH_CASE_COLUMNS)
     table = summarize(rows)
     io.write_table(os.path.join(out, "summary.csv"), table, SUMMARY_COLUMNS)
     if report:
-        write_mesh_report(out, laws, table, rows, len(fine) + len(coarse) - len(rows), fmt)
+        write_mesh_report(out, laws, table, rows, len(fine) + len(coarse) - len(rows), fmt, kept, earlier)
     return table
+
+
+def earlier_laws(folder: str, modules, calibrate: bool, out: str) -> Dict[float, dict]:
+    """The laws of an earlier run's laws.csv for `modules`, written to out's."""
+    found = read_laws(folder)
+    laws = {}
+    for m in modules:
+        law = next((w for L, w in found.items() if math.isclose(L, m)), None)
+        if law is None or (calibrate and law.get("calibrated_c_a", "") == ""):
+            raise ValueError(f"--earlier {folder}: its laws.csv has no {'calibrated ' if calibrate else ''}law "
+                             f"for modules of {m:g} m")
+        laws[m] = law
+    io.prepare_dir(out)
+    io.write_table(os.path.join(out, "laws.csv"), list(laws.values()), LAW_COLUMNS)
+    return laws
 

@@ -5,6 +5,7 @@ side."""
 from __future__ import annotations
 
 import os
+import shutil
 from typing import Dict
 
 from .. import io, plots
@@ -61,6 +62,8 @@ def cracks_side_by_side(rows, size: float, module: float, load: str, path: str, 
              and (r["role"] == "fine" or abs(r["module_m"] - module) < 1e-9)]
     if not any(r["role"] == "fine" for r in picks) or len(picks) < 2:
         return False
+    if any("dir" not in r for r in picks):   # a row kept from an earlier run: no case folder
+        return False
     picks.sort(key=lambda r: (r["role"] != "fine", VARIANTS.index(r["variant"]) if r["variant"] in VARIANTS else 0))
     fig, axes = plt.subplots(1, len(picks), figsize=(4.2 * len(picks), 4.8), squeeze=False)
     for ax, r in zip(axes[0], picks):
@@ -87,10 +90,22 @@ def _law_rows(laws: Dict[float, dict]):
             for m, w in sorted(laws.items())]
 
 
-def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: int = 0, fmt: str = "png") -> None:
+def _earlier_figure(earlier: str, out: str, name: str) -> bool:
+    """Copies figure `name` of the earlier run's folder to out, if it is there."""
+    src = os.path.join(earlier, name) if earlier else ""
+    if not src or not os.path.isfile(src):
+        return False
+    if not os.path.samefile(earlier, out):
+        shutil.copyfile(src, os.path.join(out, name))
+    return True
+
+
+def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: int = 0, fmt: str = "png",
+                      kept: int = 0, earlier: str = "") -> None:
     """report.md and its figures in out (missing: how many of the cases asked
-    for are not finished); discussion.md (hand-written), if there is one, is
-    appended."""
+    for are not finished; kept: how many rows come from the earlier run in
+    folder `earlier`, whose crack pictures stand for cases without a folder
+    here); discussion.md (hand-written), if there is one, is appended."""
     loads = list(dict.fromkeys(t["load"] for t in table))
     figs = []
     against_module_figure(table, "peak_stress_MPa_mean", "mean peak stress [MPa]", PEAK_TOLERANCE,
@@ -102,7 +117,8 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: i
         figs.append((f"U_vs_module.{fmt}", "mean U_num/U_min (at separation) against the module size"))
     for load in loads:
         name = f"cracks_0.96m_L0.06_{load}.{fmt}"
-        if cracks_side_by_side(rows, 0.96, 0.06, load, os.path.join(out, name)):
+        if cracks_side_by_side(rows, 0.96, 0.06, load, os.path.join(out, name)) or \
+                _earlier_figure(earlier, out, name):
             figs.append((name, f"crack pictures, fine and coarse (L = 0.06 m), {load}"))
     v = sorted(verdict(table), key=lambda x: (x["load"] != "uniform", VARIANTS.index(x["variant"])))
     md = ["# Mesh objectivity: coarse modules with the study's criterion against the fine lattice", "",
@@ -110,7 +126,9 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: i
           f"Fine lattice: L0 = {FINE_L0:g} m (the size-effect study). Triangular cubes run to a mean strain of "
           f"{TRIANGULAR_FINAL_STRAIN:g} (they do not separate): peak and its strain only."
           + (f" **{missing} of the cases asked for are not finished**: the tables cover the {len(rows)} that are."
-             if missing else ""),
+             if missing else "")
+          + (f" {kept} cases are rows of an earlier run's cases.csv (`--earlier`), with the commit each ran on; "
+             "the laws are that run's." if kept else ""),
           "", "## The law each module size gets (from the fine uniform cubes of side L)", "",
           "eps_p = mean peak / E; E[G_f] unchanged; CV(G_f) = CV(U_num/U_min); c_a = 0.1385 x E[U_num/U_min] "
           "(see `ldem/study/mesh.py` for the reasoning). The calibrated variant (a proposal, not the study's): "

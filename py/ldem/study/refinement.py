@@ -13,7 +13,7 @@ from typing import List, Sequence
 from .. import io
 from ..cube import CubeTest
 from .cases import read_discussion
-from .mesh import MESH_CASE_COLUMNS, load_settings, mesh_row, run_located
+from .mesh import MESH_CASE_COLUMNS, finished_rows, load_settings
 from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, summarize
 
 REFINEMENT = {0.12: (0.02, 0.01, 0.0075, 0.005), 0.24: (0.02, 0.01, 0.005)}  # size -> module sides [m]
@@ -32,43 +32,18 @@ def run_refinement(tests: Sequence[CubeTest], out: str, run: bool = True, report
                    fmt: str = "png", earlier: Sequence[dict] = (), **kw) -> List[dict]:
     """Runs the unfinished cases (unless run is False), writes cases.csv,
     summary.csv and (with report) report.md and refinement.png from the
-    finished ones; returns the summary rows. earlier: rows of an earlier
-    run's cases.csv (a committed study keeps its tables, not its case
-    folders); their cases are not run again and enter the tables as they are."""
-    kept = {_row_key(r): r for r in earlier}
-    fresh = iter(run_located([t for t in tests if _test_key(t) not in kept], out, run=run, **kw))
-    rows = []
-    for t in tests:
-        if _test_key(t) in kept:
-            rows.append(kept[_test_key(t)])
-            continue
-        s, _ = next(fresh)
-        if s is not None:
-            role = "fine" if abs(t.L0 - FINE_L0) < 1e-12 else "refined"
-            rows.append(mesh_row(role, role, s))
+    finished ones; returns the summary rows. earlier: the cases.csv rows of
+    an earlier run, kept (mesh.finished_rows)."""
+    roles = [("fine", "fine") if abs(t.L0 - FINE_L0) < 1e-12 else ("refined", "refined") for t in tests]
+    rows, kept = finished_rows(tests, roles, out, earlier=earlier, run=run, **kw)
     io.prepare_dir(out)
     io.write_table(os.path.join(out, "cases.csv"), rows, MESH_CASE_COLUMNS)
     table = summarize(rows)
     io.write_table(os.path.join(out, "summary.csv"), table, SUMMARY_COLUMNS)
     if report and table:
         refinement_figure(table, os.path.join(out, f"refinement.{fmt}"))
-        write_refinement_report(out, table, len(tests) - len(rows), fmt,
-                                sum(_test_key(t) in kept for t in tests))
+        write_refinement_report(out, table, len(tests) - len(rows), fmt, kept)
     return table
-
-
-def _test_key(t: CubeTest) -> tuple:
-    """What tells a case from another in cases.csv: load, size, module,
-    correlation length, seed, damping and strain rate."""
-    return _key(t.load, t.size, t.L0, t.corr_length, t.seed, t.zeta, t.strain_rate)
-
-
-def _row_key(r: dict) -> tuple:
-    return _key(r["load"], r["size_m"], r["module_m"], r["corr_length_m"], r["seed"], r["zeta"], r["strain_rate"])
-
-
-def _key(load, size, L0, corr_length, seed, zeta, strain_rate) -> tuple:
-    return (load, int(seed)) + tuple(round(float(x), 12) for x in (size, L0, corr_length, zeta, strain_rate))
 
 
 _COLUMNS = (("peak_stress_MPa_mean", "mean peak stress [MPa]"), ("strain_at_peak_mean", "mean strain at peak"),
