@@ -314,7 +314,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     setThreads(run_.threads);
     RunProgress& g = progress_;
     if (!g.started) {
-        g = RunProgress{};
+        g = RunProgress();
         g.loadLoss = LoadLossDetector(splitWindow_, run_.stopFraction);
         g.convergence = EnergyConvergence(run_.convergedGrowth);
         g.lastCheck = -kSeparationCheckSteps;

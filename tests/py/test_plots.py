@@ -2,7 +2,6 @@
 plotting functions return: a run to separation has zoom panels over its
 pre-peak and softening, a specimen's axes carry its own quantities, and the
 energy figure shows each energy apart. Synthetic curves: no run needed."""
-import types
 
 import numpy as np
 import pytest
