@@ -2,7 +2,6 @@
 input checks, the printed summary."""
 from __future__ import annotations
 
-import argparse
 import os
 import time
 from typing import List, Sequence
@@ -16,7 +15,8 @@ from .beams import run_beams, series_tests, uniform_tests, write_predictions
 from .cases import damping_tests, size_effect_tests
 from .damping import run_damping
 from .executors import default_threads
-from .mesh import CALIBRATION_SIZE, COARSE_MODULES, MESH_SIZES, VARIANTS, read_earlier, run_mesh
+from .located import read_earlier
+from .mesh import CALIBRATION_SIZE, COARSE_MODULES, MESH_SIZES, VARIANTS, run_mesh
 from .refinement import CORR_LENGTHS, REFINEMENT, refinement_tests, run_refinement
 from .size_effect import STUDY_SIZES, run_size_effect
 

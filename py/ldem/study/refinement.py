@@ -13,7 +13,8 @@ from typing import List, Sequence
 from .. import io
 from ..cube import CubeTest
 from .cases import read_discussion
-from .mesh import MESH_CASE_COLUMNS, finished_rows, load_settings
+from .located import MESH_CASE_COLUMNS, finished_rows
+from .mesh import load_settings
 from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, summarize
 
 REFINEMENT = {0.12: (0.02, 0.01, 0.0075, 0.005), 0.24: (0.02, 0.01, 0.005)}  # size -> module sides [m]
@@ -33,7 +34,7 @@ def run_refinement(tests: Sequence[CubeTest], out: str, run: bool = True, report
     """Runs the unfinished cases (unless run is False), writes cases.csv,
     summary.csv and (with report) report.md and refinement.png from the
     finished ones; returns the summary rows. earlier: the cases.csv rows of
-    an earlier run, kept (mesh.finished_rows)."""
+    an earlier run, kept (located.finished_rows)."""
     roles = [("fine", "fine") if abs(t.L0 - FINE_L0) < 1e-12 else ("refined", "refined") for t in tests]
     rows, kept = finished_rows(tests, roles, out, earlier=earlier, run=run, **kw)
     io.prepare_dir(out)
