@@ -76,28 +76,21 @@ std::array<double, K> nodeSum(const Lattice& lat, AddNode add) {
     });
 }
 
-// Adds value(k), for k in [0, count) whose node node(k) is owned, to slot
-// `slot` of its layer's K partial sums (partial: K per owned layer), in k order.
-template <class Node, class Value>
-void addByLayer(const Lattice& lat, std::vector<double>& partial, int K, int slot, std::size_t count, Node node,
-                Value value) {
-    for (std::size_t k = 0; k < count; ++k) {
-        const int m = lat.layerOfNode(node(k));
-        if (lat.owns(m)) partial[std::size_t(m - lat.ownBegin) * K + slot] += value(k);
-    }
+// A node's owned layer less ownBegin (its slot in partial sums of K per owned layer), or -1.
+inline int ownedSlot(const Lattice& lat, std::int32_t node) {
+    const int m = lat.layerOfNode(node);
+    return lat.owns(m) ? m - lat.ownBegin : -1;
 }
 
-// For each node, its owned layer less ownBegin (the slot addByLayer adds it to), or -1.
+// ownedSlot of each node, looked up once (the time step's sums).
 inline std::vector<std::int32_t> ownedLayerSlots(const Lattice& lat, const std::vector<std::int32_t>& nodes) {
     std::vector<std::int32_t> slot(nodes.size());
-    for (std::size_t k = 0; k < nodes.size(); ++k) {
-        const int m = lat.layerOfNode(nodes[k]);
-        slot[k] = lat.owns(m) ? m - lat.ownBegin : -1;
-    }
+    for (std::size_t k = 0; k < nodes.size(); ++k) slot[k] = ownedSlot(lat, nodes[k]);
     return slot;
 }
 
-// addByLayer with the slots of ownedLayerSlots, looked up once (the time step's sums).
+// Adds value(k), for each k whose node is owned (layerSlot[k] >= 0), to slot
+// `slot` of its layer's K partial sums (partial: K per owned layer), in k order.
 template <class Value>
 void addBySlot(std::vector<double>& partial, int K, int slot, const std::vector<std::int32_t>& layerSlot,
                Value value) {
@@ -105,11 +98,13 @@ void addBySlot(std::vector<double>& partial, int K, int slot, const std::vector<
         if (layerSlot[k] >= 0) partial[std::size_t(layerSlot[k]) * K + slot] += value(k);
 }
 
-// The sum of those values over all ranks, layer by layer (a group's reactions, a probe).
+// The sum of value(k), k in [0, count), over all ranks, layer by layer (a
+// group's reactions, a probe): each added on the rank that owns node(k).
 template <class Node, class Value>
 double listSum(const Lattice& lat, std::size_t count, Node node, Value value) {
     std::vector<double> partial(std::size_t(lat.ownEnd - lat.ownBegin), 0.0);
-    addByLayer(lat, partial, 1, 0, count, node, value);
+    for (std::size_t k = 0; k < count; ++k)
+        if (const int s = ownedSlot(lat, node(k)); s >= 0) partial[std::size_t(s)] += value(k);
     return gatherLayerSums(commOf(lat), partial, 1)[0];
 }
 
