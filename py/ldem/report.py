@@ -191,7 +191,7 @@ def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_ro
     if fits:
         fractal_figure(table, rows, fits, os.path.join(out, f"fractal.{fmt}"))
         figs.append((f"fractal.{fmt}", "U_num against size, fractal law"))
-    write_report(out, cases, table, fits, figs, damping_rows, discussion, fmt)
+    write_report(out, cases, rows, table, fits, figs, damping_rows, discussion, fmt)
 
 
 
@@ -205,7 +205,23 @@ def _tail_drive(p: dict) -> str:
             "README, `ldem cube`)")
 
 
-def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=None, fmt="png") -> None:
+def _cost(case_rows) -> list:
+    """The Cost section: per load, the cases' wall times added up (what the
+    study costs one case at a time), the longest, and the commits they ran on."""
+    rows = []
+    for load in dict.fromkeys(r["load"] for r in case_rows):
+        mine = [r for r in case_rows if r["load"] == load]
+        walls = [float(r["wall_s"]) for r in mine if r.get("wall_s", "") != ""]
+        commits = sorted({str(r.get("git_commit") or "")[:7] or "?" for r in mine})
+        threads = sorted({str(r.get("threads", "")) for r in mine})
+        rows.append([load, str(len(mine)), ", ".join(threads), f"{sum(walls):.0f}", f"{max(walls, default=0):.0f}",
+                     ", ".join(commits)])
+    return ["## Cost", "", "The cases' wall times (`wall_s` in `cases.csv`, set-up to stop) added up, per load:", "",
+            md_table(["load", "cases", "threads per case", "sum of wall times [s]", "longest case [s]", "commits"],
+                     rows), ""]
+
+
+def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, discussion=None, fmt="png") -> None:
     tests = [c.test for c in cases]
     first = cases[0].summary
     p = first["parameters"]
@@ -261,6 +277,7 @@ def write_report(out, cases, table, fits, figs, damping_rows=None, discussion=No
                    "the two readings differ most where the specimens' strains at their peaks scatter most.", "",
                    md_table(["size [m]", "peak of the mean curve [MPa]", "against study", "its strain",
                               "against study"], rows), ""]
+    md += _cost(case_rows)
     md += ["## Fracture energy", "",
            "U_num: fracture energy dissipated up to separation (no chain of intact bars joins the two faces; "
            "the mean is over the separated specimens, counted in 'separated'); beside it the energy when the "

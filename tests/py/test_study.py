@@ -3,6 +3,7 @@ parallel processes and a local dask cluster."""
 import json
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -206,7 +207,16 @@ def test_size_effect_command_tables_and_report(tmp_path, cli):
         picture(os.path.join(out, name))
     cracks = picture(os.path.join(out, "cracks_uniform.png"))
     assert colour_share(cracks, "red") > 1e-4 and colour_share(cracks, undamaged_on_white()) > 1e-4
-    assert "| 0.12 | 2 |" in open(os.path.join(out, "report.md")).read()
+    report = open(os.path.join(out, "report.md")).read()
+    assert "| 0.12 | 2 |" in report
+    # The cost of each load: its cases' wall times added up, the longest, the commits they ran on.
+    cost = {m[0]: m[1:] for m in re.findall(r"^\| (uniform|triangular) \| (\d+) \| [\d, ]+ \| (\d+) \| (\d+) \| (.*) \|$",
+                                             report, re.M)}
+    for load in ("uniform", "triangular"):
+        walls = [c["wall_s"] for c in cases if c["load"] == load]
+        n, total, longest, commits = cost[load]
+        assert int(n) == 4 and abs(int(total) - sum(walls)) <= 1 and abs(int(longest) - max(walls)) <= 1
+        assert commits.split(", ") == sorted({str(c["git_commit"])[:7] or "?" for c in cases if c["load"] == load})
 
 
 def test_study_bad_input_is_one_line(tmp_path, cli):
