@@ -14,6 +14,7 @@ import numpy as np  # noqa: E402
 
 from . import io, plots  # noqa: E402
 from .curves import mean_curve  # noqa: E402
+from .markdown import cost_section, md_table, num_cell, pct, stop_rule, tail_drive_words  # noqa: E402
 
 
 class Case(NamedTuple):
@@ -146,29 +147,6 @@ def damping_figures(out, cases, fmt: str = "png") -> List[str]:
     return names
 
 
-def stop_rule(p: dict) -> str:
-    """What ends a run of parameters p, in words."""
-    rule = {"separation": "separation (no chain of intact bars joins the faces)", "load_loss": "load loss",
-            "converged": f"separation, or U converged (growth below {p.get('converged_growth', 0.01):g} over the "
-                         f"last doubling of the strain past load loss)"}[p.get("stop_at", "separation")]
-    return f"{p['load']}: {rule}, or mean strain {p['final_strain']:g}"
-
-
-def num_cell(v, fmt) -> str:
-    """A table cell: '-' for a value that does not exist (e.g. U_num of a run that did not separate)."""
-    return "-" if v in ("", None) else format(float(v), fmt)
-
-
-def md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
-    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
-    lines += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]
-    return "\n".join(lines)
-
-
-def _pct(a, b):
-    return f"{100 * (a - b) / b:+.1f} %"
-
-
 def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_rows: Optional[list] = None,
                        discussion: Optional[str] = None, fmt: str = "png") -> None:
     """report.md and the figures in folder out. rows: the cases' table rows
@@ -192,33 +170,6 @@ def size_effect_report(out, cases: Sequence[Case], rows, table, fits, damping_ro
         fractal_figure(table, rows, fits, os.path.join(out, f"fractal.{fmt}"))
         figs.append((f"fractal.{fmt}", "U_num against size, fractal law"))
     write_report(out, cases, rows, table, fits, figs, damping_rows, discussion, fmt)
-
-
-
-def _tail_drive(p: dict) -> str:
-    """The drive past its ramp after load loss, for the report's table (runs
-    before tail_drive was declared ran the fixed drive)."""
-    if p.get("tail_drive", "fixed") == "fixed":
-        return ""
-    return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
-            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}; "
-            "README, `ldem cube`)")
-
-
-def _cost(case_rows) -> list:
-    """The Cost section: per load, the cases' wall times added up (what the
-    study costs one case at a time), the longest, and the commits they ran on."""
-    rows = []
-    for load in dict.fromkeys(r["load"] for r in case_rows):
-        mine = [r for r in case_rows if r["load"] == load]
-        walls = [float(r["wall_s"]) for r in mine if r.get("wall_s", "") != ""]
-        commits = sorted({str(r.get("git_commit") or "")[:7] or "?" for r in mine})
-        threads = sorted({str(r.get("threads", "")) for r in mine})
-        rows.append([load, str(len(mine)), ", ".join(threads), f"{sum(walls):.0f}", f"{max(walls, default=0):.0f}",
-                     ", ".join(commits)])
-    return ["## Cost", "", "The cases' wall times (`wall_s` in `cases.csv`, set-up to stop) added up, per load:", "",
-            md_table(["load", "cases", "threads per case", "sum of wall times [s]", "longest case [s]", "commits"],
-                     rows), ""]
 
 
 def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, discussion=None, fmt="png") -> None:
@@ -245,7 +196,7 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
               ["load loss", "bars broke and the stress averaged over "
                             + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
                             + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
-                              f"{p.get('loss_speedup', 1):g} times" + _tail_drive(p)],
+                              f"{p.get('loss_speedup', 1):g} times" + tail_drive_words(p)],
               ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
               ["threads per case", str(first["threads"])],
           ]), ""]
@@ -256,10 +207,10 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
             ref = r["ref_peak_stress_MPa"] != ""
             rows.append([f"{r['size_m']:g}", r["seeds"], f"{r['peak_stress_MPa_mean']:.3f}",
                          f"{r['peak_stress_MPa_cv']:.3f}",
-                         f"{r['ref_peak_stress_MPa']:.2f} ({_pct(r['peak_stress_MPa_mean'], r['ref_peak_stress_MPa'])})"
+                         f"{r['ref_peak_stress_MPa']:.2f} ({pct(r['peak_stress_MPa_mean'], r['ref_peak_stress_MPa'])})"
                          if ref else "-",
                          f"{r['strain_at_peak_mean']:.3e}", f"{r['strain_at_peak_cv']:.3f}",
-                         f"{r['ref_strain_at_peak']:.2e} ({_pct(r['strain_at_peak_mean'], r['ref_strain_at_peak'])})"
+                         f"{r['ref_strain_at_peak']:.2e} ({pct(r['strain_at_peak_mean'], r['ref_strain_at_peak'])})"
                          if ref else "-", f"{r['edge_strain_at_peak_mean']:.3e}", f"{r['wall_s_mean']:.0f}"])
         md += [f"### {load}", "", md_table(
             ["size [m]", "seeds", "peak [MPa]", "CV", "study (Table 3)", "strain at peak", "CV", "study",
@@ -268,16 +219,16 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
         for r in (r for r in table if r["load"] == load and r["mean_curve_peak_MPa"] != ""):
             ref = r["ref_peak_stress_MPa"] != ""
             rows.append([f"{r['size_m']:g}", f"{r['mean_curve_peak_MPa']:.3f}",
-                         _pct(r["mean_curve_peak_MPa"], r["ref_peak_stress_MPa"]) if ref else "-",
+                         pct(r["mean_curve_peak_MPa"], r["ref_peak_stress_MPa"]) if ref else "-",
                          f"{r['mean_curve_strain_at_peak']:.3e}",
-                         _pct(r["mean_curve_strain_at_peak"], r["ref_strain_at_peak"]) if ref else "-"])
+                         pct(r["mean_curve_strain_at_peak"], r["ref_strain_at_peak"]) if ref else "-"])
         if rows:
             md += ["The peak of the mean curve (the specimens' curves averaged at equal mean strain, then its "
                    "maximum) is another reading of \"mean peak\". It is never above the mean of the peaks, and "
                    "the two readings differ most where the specimens' strains at their peaks scatter most.", "",
                    md_table(["size [m]", "peak of the mean curve [MPa]", "against study", "its strain",
                               "against study"], rows), ""]
-    md += _cost(case_rows)
+    md += cost_section(case_rows)
     md += ["## Fracture energy", "",
            "U_num: fracture energy dissipated up to separation (no chain of intact bars joins the two faces; "
            "the mean is over the separated specimens, counted in 'separated'); beside it the energy when the "

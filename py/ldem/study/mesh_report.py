@@ -9,7 +9,7 @@ import shutil
 from typing import Dict
 
 from .. import io, plots
-from ..report import md_table, num_cell
+from ..markdown import md_table, num_cell
 from .cases import load_slice, read_discussion
 from .mesh_tables import FINE_L0, PEAK_TOLERANCE, TRIANGULAR_FINAL_STRAIN, U_TOLERANCE, VARIANTS, verdict
 

@@ -1,0 +1,55 @@
+"""The cells, tables and sentences of the studies' markdown reports
+(ldem.report, ldem.study.refinement): plain text from plain data."""
+from __future__ import annotations
+
+from typing import Sequence
+
+
+def stop_rule(p: dict) -> str:
+    """What ends a run of parameters p, in words."""
+    rule = {"separation": "separation (no chain of intact bars joins the faces)", "load_loss": "load loss",
+            "converged": f"separation, or U converged (growth below {p.get('converged_growth', 0.01):g} over the "
+                         f"last doubling of the strain past load loss)"}[p.get("stop_at", "separation")]
+    return f"{p['load']}: {rule}, or mean strain {p['final_strain']:g}"
+
+
+def num_cell(v, fmt) -> str:
+    """A table cell: '-' for a value that does not exist (e.g. U_num of a run that did not separate)."""
+    return "-" if v in ("", None) else format(float(v), fmt)
+
+
+def md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
+    lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
+    lines += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+def pct(a, b) -> str:
+    """a against b, in per cent with its sign."""
+    return f"{100 * (a - b) / b:+.1f} %"
+
+
+def tail_drive_words(p: dict) -> str:
+    """The drive past its ramp after load loss, for the report's table (runs
+    before tail_drive was declared ran the fixed drive)."""
+    if p.get("tail_drive", "fixed") == "fixed":
+        return ""
+    return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
+            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}; "
+            "README, `ldem cube`)")
+
+
+def cost_section(case_rows) -> list:
+    """The Cost section: per load, the cases' wall times added up (what the
+    study costs one case at a time), the longest, and the commits they ran on."""
+    rows = []
+    for load in dict.fromkeys(r["load"] for r in case_rows):
+        mine = [r for r in case_rows if r["load"] == load]
+        walls = [float(r["wall_s"]) for r in mine if r.get("wall_s", "") != ""]
+        commits = sorted({str(r.get("git_commit") or "")[:7] or "?" for r in mine})
+        threads = sorted({str(r.get("threads", "")) for r in mine})
+        rows.append([load, str(len(mine)), ", ".join(threads), f"{sum(walls):.0f}", f"{max(walls, default=0):.0f}",
+                     ", ".join(commits)])
+    return ["## Cost", "", "The cases' wall times (`wall_s` in `cases.csv`, set-up to stop) added up, per load:", "",
+            md_table(["load", "cases", "threads per case", "sum of wall times [s]", "longest case [s]", "commits"],
+                     rows), ""]
