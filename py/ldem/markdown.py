@@ -1,5 +1,5 @@
 """The cells, tables and sentences of the studies' markdown reports
-(ldem.report, ldem.study.refinement): plain text from plain data."""
+(ldem.report and the mesh and refinement reports): plain text from plain data."""
 from __future__ import annotations
 
 from typing import Sequence
