@@ -198,7 +198,6 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
                             + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
                               f"{p.get('loss_speedup', 1):g} times" + tail_drive_words(p)],
               ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
-              ["threads per case", str(first["threads"])],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]
     for load in dict.fromkeys(r["load"] for r in table):
