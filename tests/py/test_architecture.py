@@ -1,7 +1,8 @@
 """The package's shape (README, Architecture): layers import downwards only,
 no import cycles (module-level or inside functions), no module over 300 lines
-without the reason at its top, no runner of cases in scripts/ (studies live
-in ldem.study). Read from the source with ast, nothing imported."""
+without the reason at its top, no runner of cases in scripts/ or dev/ (studies
+live in ldem.study), no developer's tool in scripts/ (dev/ holds them), each
+file of both named in ARCHITECTURE.md. Read from the source, nothing imported."""
 import ast
 import os
 
@@ -171,13 +172,17 @@ def _case_runner_parts(path):
     return found
 
 
+def _files(folder):
+    return sorted(os.listdir(os.path.join(ROOT, folder)))
+
+
 def test_no_script_runs_cases_itself():
-    """scripts/ keeps what users copy or run under YADE; a series of runs with
-    folders, resume and processes is a study (ldem.study)."""
-    folder = os.path.join(ROOT, "scripts")
-    wrong = [f"scripts/{f}: {part}" for f in sorted(os.listdir(folder)) if f.endswith(".py")
-             for part in _case_runner_parts(os.path.join(folder, f))]
-    assert not wrong, "case runners in scripts/:\n" + "\n".join(wrong)
+    """scripts/ keeps what users copy or run under YADE, dev/ the developers'
+    tools; a series of runs with folders, resume and processes is a study
+    (ldem.study)."""
+    wrong = [f"{d}/{f}: {part}" for d in ("scripts", "dev") for f in _files(d) if f.endswith(".py")
+             for part in _case_runner_parts(os.path.join(ROOT, d, f))]
+    assert not wrong, "case runners in scripts/ or dev/:\n" + "\n".join(wrong)
 
 
 def test_the_script_check_sees_a_case_runner(tmp_path):
@@ -186,6 +191,43 @@ def test_the_script_check_sees_a_case_runner(tmp_path):
                       "def finished(case):\n    return True\npool = multiprocessing.Pool(2)\n")
     assert _case_runner_parts(str(script)) == ["imports multiprocessing", "imports concurrent.futures",
                                                "defines finished()", "uses Pool"]
+
+
+# What makes a file a developer's tool (dev/), never a user's copy: it times the
+# benchmark program (ldem-bench, through ldem.bench or by its name).
+DEV_TOOL_MARK = r"ldem[-_.]bench\b|from ldem import bench\b"
+
+
+def _developer_tool_marks(path):
+    import re
+    return sorted(set(re.findall(DEV_TOOL_MARK, open(path).read())))
+
+
+def test_scripts_hold_no_developer_tool():
+    """scripts/ holds what users copy (issue 38 item 4); a benchmark, its MPI
+    runs and the documentation's figures are in dev/."""
+    wrong = [f"scripts/{f}: {m}" for f in _files("scripts")
+             for m in _developer_tool_marks(os.path.join(ROOT, "scripts", f))]
+    assert not wrong, "developer's tools in scripts/ (move them to dev/):\n" + "\n".join(wrong)
+    assert all(_developer_tool_marks(os.path.join(ROOT, "dev", f)) for f in _files("dev") if f.startswith("bench"))
+
+
+def test_the_tool_check_sees_a_benchmark(tmp_path):
+    script = tmp_path / "timing.sh"
+    script.write_text("bench=$(command -v ldem-bench)\n$bench --modules 48\n")
+    assert _developer_tool_marks(str(script)) == ["ldem-bench"]
+    script.write_text("import ldem.bench\nprint(ldem.bench.bench_program())\n")
+    assert _developer_tool_marks(str(script)) == ["ldem.bench"]
+    script.write_text("srun ldem cube --size 2.0  # a user's run, on a cluster\n")
+    assert _developer_tool_marks(str(script)) == []
+
+
+def test_architecture_names_every_script_and_tool():
+    """ARCHITECTURE.md says what each file of scripts/ and dev/ is: a new one is
+    placed and described, never left beside the others unexplained."""
+    text = open(os.path.join(ROOT, "ARCHITECTURE.md")).read()
+    unnamed = [f"{d}/{f}" for d in ("scripts", "dev") for f in _files(d) if f"`{f}`" not in text]
+    assert not unnamed, "not in ARCHITECTURE.md: " + ", ".join(unnamed)
 
 
 # -- the C++ core: a bar law is one header in pkg/ldem/laws/ ----------------------------

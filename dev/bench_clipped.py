@@ -4,7 +4,7 @@ cut from an N^3 box, and on the M^3 box whose bar count is nearest, run in
 alternation (the machine's load drifts: a ratio is measured within one round),
 --rounds times; prints the medians and the median of the per-round ratios.
 
-    /usr/bin/python3 scripts/bench_clipped.py [--modules 24,48] [--rounds 5] [--threads 1]
+    /usr/bin/python3 dev/bench_clipped.py [--modules 24,48] [--rounds 5] [--threads 1]
 """
 import argparse
 import json

@@ -3,7 +3,7 @@
 each figure and the median of the pair-by-pair ratios B/A: a speed-up claimed
 on this noisy machine comes from here (README, Performance).
 
-    scripts/bench_compare.py OLD/pkg/ldem-bench NEW/pkg/ldem-bench --pairs 7 -- --modules 48 --threads 2
+    dev/bench_compare.py OLD/pkg/ldem-bench NEW/pkg/ldem-bench --pairs 7 -- --modules 48 --threads 2
 
 Everything after -- goes to both programs (ldem-bench --help lists it).
 """

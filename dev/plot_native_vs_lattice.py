@@ -10,7 +10,7 @@ when they are missing (or always with --rerun-yade). Writes into --out:
                           per face area, particles/bars, wall time
   curve_<engine>_<L>.csv  the curves (mean_strain,stress_MPa), thinned to at most --max-rows rows
 
-Run: PYTHONPATH=build/python /usr/bin/python3 scripts/plot_native_vs_lattice.py [--sizes 0.12 0.24]
+Run: PYTHONPATH=build/python /usr/bin/python3 dev/plot_native_vs_lattice.py [--sizes 0.12 0.24]
      [--yade-dir out/yade_native] [--out results/yade-native] [--threads 1]
 """
 import argparse

@@ -2,7 +2,7 @@
 # A lattice too big for one process, run on two: under a per-process memory
 # limit (ulimit -v, address space), the 64^3 cube (3.7 million bars) does not
 # fit in one process and runs in 2 MPI ranks, each holding its slab.
-#   bash scripts/mpi_memory_limit.sh [LIMIT_kB=130000] [MODULES=64]
+#   bash dev/mpi_memory_limit.sh [LIMIT_kB=130000] [MODULES=64]
 # (from a build tree: build/pkg/ldem-bench; installed: ldem-bench on PATH)
 set -uo pipefail
 limit=${1:-130000} modules=${2:-64}

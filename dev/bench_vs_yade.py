@@ -3,7 +3,7 @@
 (set up as Hillerborg's triangle by ldem.yade), no collider, NewtonIntegrator,
 its OpenMP threads from `-j`; ldem through `ldem-bench` with the same threads.
 
-Run: yade-double -j T -n -x scripts/bench_vs_yade.py [--modules N] [--steps S] [--repeats R]
+Run: yade-double -j T -n -x dev/bench_vs_yade.py [--modules N] [--steps S] [--repeats R]
 Prints one JSON line per engine and a last line with the ratio.
 """
 import argparse
@@ -20,7 +20,7 @@ from ldem.scene import exit_with
 
 
 def parse(argv):
-    p = argparse.ArgumentParser(prog="yade-double -j T -n -x scripts/bench_vs_yade.py")
+    p = argparse.ArgumentParser(prog="yade-double -j T -n -x dev/bench_vs_yade.py")
     p.add_argument("--modules", type=int, default=12, help="modules per side")
     p.add_argument("--steps", type=int, default=50, help="steps per timed repetition")
     p.add_argument("--repeats", type=int, default=3, help="repetitions (the median is reported)")

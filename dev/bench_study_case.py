@@ -4,7 +4,7 @@
 `ldem-bench --modules S/L0 --threads 1` (the bare time step, elastic and past
 load loss), in turn, with the ratio pair by pair (README, Performance).
 
-    scripts/bench_study_case.py --size 0.24 --pairs 3
+    dev/bench_study_case.py --size 0.24 --pairs 3
 """
 import argparse
 import json

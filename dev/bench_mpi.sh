@@ -3,7 +3,7 @@
 # 48^3 cube in 1 and in 2 MPI ranks of 1 thread each, interleaved RUNS times;
 # prints each run and the medians: ns per bar-step, parallel efficiency
 # t(1) / (2 t(2)), bytes each rank sends per step, peak memory per rank.
-#   bash scripts/bench_mpi.sh [RUNS=5] [MODULES=48]
+#   bash dev/bench_mpi.sh [RUNS=5] [MODULES=48]
 set -euo pipefail
 runs=${1:-5} modules=${2:-48}
 # The build tree's ldem-bench if there is one (an installed one may be older), else the installed one.

@@ -1,7 +1,7 @@
 """doc/architecture.png: the layers of the ldem package, read from the one
 place they are declared and checked, tests/py/test_architecture.py (LAYERS).
 
-    /usr/bin/python3 scripts/architecture_figure.py
+    /usr/bin/python3 dev/architecture_figure.py
 """
 import ast
 import os
