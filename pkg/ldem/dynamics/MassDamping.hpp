@@ -9,6 +9,7 @@
 
 #include "ldem/Integrator.hpp"
 #include "ldem/Parameters.hpp"
+#include "ldem/RunParams.hpp"
 
 namespace ldem {
 
@@ -23,6 +24,8 @@ public:
     };
     MassDamping() = default;  // none: D_f = 0
     MassDamping(const Params& p, double omega1) : Df_(massDampingCoefficient(p.zeta, omega1)) {}
+    // Every damping is built from the run's parameters and omega_1 (Registry.hpp: makeDampings).
+    MassDamping(const RunParams& run, double omega1) : MassDamping(params(run), omega1) {}
     double coefficient() const { return Df_; }  // D_f [1/s]
     CentralDifference nodeUpdate(const CentralDifference& cd) const { return CentralDifference(cd.dt, cd.Df + Df_); }
     template <class Rows>
@@ -31,6 +34,11 @@ public:
     void setState(const std::vector<double>&) {}
 
 private:
+    static Params params(const RunParams& from) {
+        Params to;
+        LDEM_MASS_DAMPING_PARAMETERS(LDEM_COPY_MEMBER)
+        return to;
+    }
     double Df_ = 0;
 };
 

@@ -15,7 +15,7 @@
 // A stop rule (StopRules):
 //   void record(StopRecord&)        at each record, before the observer: its event in the summary
 //   const char* reason(point, summary) const   after the observer: its stop reason, or nullptr
-// A damping (Dampings, all of them applied in the registry's order):
+// A damping (Dampings, all of them applied in the registry's order), built from (RunParams, omega_1):
 //   CentralDifference nodeUpdate(CentralDifference) const   the node update with its terms (Integrator.hpp)
 //   Rows barRows(Rows) const         the force loop's row functor with its bar forces (laws/BarLaw.hpp)
 #pragma once

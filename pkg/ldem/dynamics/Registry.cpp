@@ -13,8 +13,15 @@ namespace ldem {
         return to;                             \
     }()
 
+namespace {
+template <class... D>
+std::tuple<D...> makeEach(const std::tuple<D...>*, const RunParams& run, double omega1) {
+    return {D(run, omega1)...};
+}
+}  // namespace
+
 Dampings makeDampings(const RunParams& run, double omega1) {
-    return {MassDamping(LDEM_PART_PARAMS(MassDamping::Params, LDEM_MASS_DAMPING_PARAMETERS, run), omega1)};
+    return makeEach(static_cast<const Dampings*>(nullptr), run, omega1);
 }
 
 double dampingCoefficient(const Dampings& d) { return std::get<MassDamping>(d).coefficient(); }

@@ -5,7 +5,8 @@
 // A new part is a header (and .cpp) in this folder, its line below, its
 // parameters' list in Parameters.hpp and, for a drive or a stop, its choice's
 // name in that parameter's domain and its case in makeDrive / makeStops.
-// A new damping: its header, and its type at the end of Dampings.
+// A new damping: its header (a constructor from the RunParams and omega_1), and
+// its type at the end of Dampings.
 #pragma once
 #include <cstddef>
 #include <string>
