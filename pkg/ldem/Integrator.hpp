@@ -1,4 +1,5 @@
-// Explicit central differences with mass-proportional damping (LDEM_SPEC section 5):
+// Explicit central differences with mass-proportional damping (LDEM_SPEC section 5;
+// the damping is a dynamic part, dynamics/MassDamping.hpp, that sets D_f here):
 //   M x'' + D_f M x' + F_int(x) = P(t)
 //   v(n+1/2) = [ (1 - D_f dt/2) v(n-1/2) + dt (P - F_int)/m ] / (1 + D_f dt/2)
 //   x(n+1)   = x(n) + dt v(n+1/2)
@@ -16,9 +17,6 @@ namespace ldem {
 
 // Stability limit of central differences: dt_crit = 2 / omega_max.
 inline double stableTimeStep(double omegaMax) { return 2.0 / omegaMax; }
-
-// D_f = 2 zeta omega_1: damping ratio zeta on the fundamental mode.
-inline double massDampingCoefficient(double zeta, double omega1) { return 2.0 * zeta * omega1; }
 
 // The update  v <- a v + b f/m,  x <- x + dt v,  with
 //   a = (1 - D_f dt/2) / (1 + D_f dt/2),  b = dt / (1 + D_f dt/2).

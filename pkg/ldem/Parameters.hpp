@@ -7,7 +7,8 @@
 // from the table the bindings export. The defaults are the study's
 // (LDEM_SPEC section 6, Table 2).
 //
-// Adding a parameter: one line in a list below, then its use.
+// Adding a parameter: one line in a list below, then its use. A dynamic part
+// (pkg/ldem/dynamics/) has a list of its own, spliced into its group's list.
 //
 // X(type, member, "name", default, "unit", domain, "help")
 #pragma once
@@ -51,66 +52,102 @@
     X(double, GfRatio, "Gf_ratio", 0.625, "", Domain::openClosed(0, 1),                                       \
       "bilinear law: G_f/G_F, the share of the fracture energy under the initial line (MC2010: 0.625; 1: the triangle)")
 
-#define LDEM_LOADING_PARAMETERS(X)                                                                           \
-    X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),            \
-      "upper-face displacement: uniform or triangular")                                                        \
-    X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(), "vertical strain rate at the most-pulled edge") \
-    X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                             \
-      "smooth start of the loading (0: two fundamental periods)")                                              \
-    X(bool, topLateralFree, "top_lateral", true, "", Domain::choices({"fixed", "free"}),                       \
-      "lateral DOFs of the upper nodes: free or fixed")                                                        \
-    X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),                \
-      "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                             \
-    X(TailDrive, tailDrive, "tail_drive", TailDrive::Adaptive, "", Domain::choices({"fixed", "adaptive"}),      \
-      "the drive once the load is lost: fixed (loss_speedup times as fast, ramped in once), or adaptive "      \
-      "(ramped in to loss_speedup the same way, then faster while no bar softens and the chains are slack, "    \
-      "within bounds of drag and inertia: tail_max_speedup, tail_load, tail_drag, tail_step)")                 \
-    X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                       \
-      "drive velocity factor once the load is lost; tail_drive adaptive: its floor, the factor it returns to "  \
-      "while bars soften")                                                                                     \
-    X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                              \
-      "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")             \
-    X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                             \
-      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at loss_speedup "   \
-      "(the chains are taut); below, at most loss_speedup x tail_load / (support stress / peak)")              \
-    X(double, tailDrag, "tail_drag", 0.1, "", Domain::open(0, 1),                                              \
-      "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "  \
-      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height")                      \
-    X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                        \
-      "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "    \
-      "over the record's steps")                                                                               \
-    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                     \
+// The drive's program, shared by every drive (dynamics/ConstantRateDrive.hpp).
+#define LDEM_DRIVE_PARAMETERS(X)                                                                             \
+    X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(), "vertical strain rate at the most-pulled edge")\
+    X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                           \
+      "smooth start of the loading (0: two fundamental periods)")
+
+// The fixed speed-up after the load loss (dynamics/ConstantRateDrive.hpp; the adaptive drive's floor).
+#define LDEM_SPEEDUP_PARAMETERS(X)                                                                           \
+    X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                     \
+      "drive velocity factor once the load is lost; tail_drive adaptive: its floor, the factor it returns to "\
+      "while bars soften")
+
+// The adaptive tail (dynamics/AdaptiveDrive.hpp).
+#define LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                    \
+    X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                            \
+      "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")           \
+    X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                          \
+      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at loss_speedup "\
+      "(the chains are taut); below, at most loss_speedup x tail_load / (support stress / peak)")            \
+    X(double, tailDrag, "tail_drag", 0.1, "", Domain::open(0, 1),                                            \
+      "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "\
+      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height")                    \
+    X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                      \
+      "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "  \
+      "over the record's steps")
+
+// Opening control (dynamics/ServoDrive.hpp).
+#define LDEM_SERVO_PARAMETERS(X)                                                                             \
+    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                   \
       "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
 
+// The loading: the dynamic parts' lists above, in the table's order, and the choice of the tail drive.
+#define LDEM_LOADING_PARAMETERS(X)                                                                           \
+    X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),          \
+      "upper-face displacement: uniform or triangular")                                                      \
+    LDEM_DRIVE_PARAMETERS(X)                                                                                 \
+    X(bool, topLateralFree, "top_lateral", true, "", Domain::choices({"fixed", "free"}),                     \
+      "lateral DOFs of the upper nodes: free or fixed")                                                      \
+    X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),              \
+      "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                           \
+    X(TailDrive, tailDrive, "tail_drive", TailDrive::Adaptive, "", Domain::choices({"fixed", "adaptive"}),   \
+      "the drive once the load is lost: fixed (loss_speedup times as fast, ramped in once), or adaptive "    \
+      "(ramped in to loss_speedup the same way, then faster while no bar softens and the chains are slack, " \
+      "within bounds of drag and inertia: tail_max_speedup, tail_load, tail_drag, tail_step)")               \
+    LDEM_SPEEDUP_PARAMETERS(X)                                                                               \
+    LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                        \
+    LDEM_SERVO_PARAMETERS(X)
+
+// Mass-proportional damping (dynamics/MassDamping.hpp).
+#define LDEM_MASS_DAMPING_PARAMETERS(X)                                                                      \
+    X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                 \
+      "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
+      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")
+
+// The converged stop (dynamics/ConvergedStop.hpp).
+#define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
+    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                             \
+      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "\
+      "the mean strain since load loss, with the load still below stop_fraction x peak")
+
+// The final-strain stop (dynamics/FinalStrainStop.hpp).
+#define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
+    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(), "stop at this mean strain if the event has not come")
+
+// The load-loss detector (dynamics/LoadLoss.hpp).
+#define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \
+    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                             \
+      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")\
+    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                     \
+      "averaging time of the load-loss test (0: two fundamental periods)")
+
+// The run: the dynamic parts' lists above, in the table's order, and the choice of the stop.
 #define LDEM_RUN_PARAMETERS(X)                                                                               \
-    X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")     \
-    X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                   \
-      "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "   \
-      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)") \
-    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}), \
-      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "     \
-      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss") \
-    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                               \
-      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "  \
-      "the mean strain since load loss, with the load still below stop_fraction x peak")                      \
-    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(), "stop at this mean strain if the event has not come") \
-    X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")               \
-    X(double, dtSafety, "dt_safety", 0.4, "", Domain::openClosed(0, 1),                                        \
-      "fraction of the stability limit 2/omega_max allowed (see Simulation.cpp)")                              \
-    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                               \
-      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")  \
-    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                       \
-      "averaging time of the load-loss test (0: two fundamental periods)")                                     \
-    X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                               \
-      "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")              \
-    X(int, recordEvery, "record_every", 0, "steps", Domain::atLeast(0),                                        \
-      "steps between curve rows (0: one per eps_p/50 of mean strain at the initial rate)")                     \
+    X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")   \
+    LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
+    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}),\
+      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "    \
+      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss")\
+    LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                        \
+    LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                     \
+    X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \
+    X(double, dtSafety, "dt_safety", 0.4, "", Domain::openClosed(0, 1),                                      \
+      "fraction of the stability limit 2/omega_max allowed (see Simulation.cpp)")                            \
+    LDEM_LOAD_LOSS_PARAMETERS(X)                                                                             \
+    X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                             \
+      "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")            \
+    X(int, recordEvery, "record_every", 0, "steps", Domain::atLeast(0),                                      \
+      "steps between curve rows (0: one per eps_p/50 of mean strain at the initial rate)")                   \
     X(int, threads, "threads", 0, "", Domain::atLeast(0), "OpenMP threads (0: OMP_NUM_THREADS if set, else all cores)")
 
 // A struct member with its default.
 #define LDEM_DECLARE_MEMBER(type, member, name, def, unit, domain, help) type member = def;
 // Its check against its domain, inside the struct's validate().
 #define LDEM_CHECK_MEMBER(type, member, name, def, unit, domain, help) ::ldem::checkParameter(name, unit, member, domain);
+// A dynamic part's own Params (its list) taken from the struct `from` whose list splices it in: `to.x = from.x;`.
+#define LDEM_COPY_MEMBER(type, member, name, def, unit, domain, help) to.member = from.member;
 
 namespace ldem {
 

@@ -12,14 +12,6 @@
 
 namespace ldem {
 
-bool LoadLossDetector::update(double time, double stress, double peakStress, std::int64_t broken) {
-    recent_.emplace_back(time, stress);
-    while (recent_.front().first < time - window_) recent_.pop_front();
-    double sum = 0;
-    for (const auto& r : recent_) sum += r.second;
-    return broken > 0 && time >= window_ && sum / recent_.size() < fraction_ * peakStress;
-}
-
 Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams& load, const RunParams& run)
     : mat_(m), load_(load), run_(run) {
     mat_.validate();
@@ -55,29 +47,21 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         throw std::invalid_argument(msg.str());
     }
     dt_ = run_.dt > 0 ? run_.dt : limit;
-    Df_ = massDampingCoefficient(run_.zeta, freq_.omega1);
+    dampings_ = makeDampings(run_, freq_.omega1);
     const double pi = 3.14159265358979323846;
-    const double period1 = 2 * pi / freq_.omega1;
-    drive_.v0 = load_.strainRate * meas_.gaugeLength;
-    drive_.rampTime = load_.rampTime > 0 ? load_.rampTime : 2 * period1;
-    drive_.speedup = load_.lossSpeedup;
-    if (load_.tailDrive == TailDrive::Adaptive && load_.tailMaxSpeedup < load_.lossSpeedup)
-        throw std::invalid_argument("tail_max_speedup (" + formatNumber(load_.tailMaxSpeedup) +
-                                    ") must be at least loss_speedup (" + formatNumber(load_.lossSpeedup) +
-                                    ") for the adaptive drive");
-    if (openingControl() != (load_.openingRate > 0))
-        throw std::invalid_argument(openingControl() ? "opening control (a controlled probe) needs opening_rate > 0"
-                                                     : "opening_rate needs a controlled probe (measure.control)");
-    servo_.rate = load_.openingRate, servo_.gain = 0.5 * Df_;
-    splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * period1;
+    splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * (2 * pi / freq_.omega1);
+    DynamicsSetup setup{freq_.omega1, dt_, meas_.gaugeLength, splitWindow_, 1, openingControl()};
     if (run_.recordEvery > 0) {
         recordEvery_ = run_.recordEvery;
     } else {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
-        const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive_.v0 * std::abs(meas_.meanDriveWeight));
+        const double v0 = fixedDrive(load_, setup).program().v0;
+        const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (v0 * std::abs(meas_.meanDriveWeight));
         recordEvery_ = std::max(1, int(rowTime / dt_));
     }
-
-    tail_ = AdaptiveDrive(tailLimits());  // needs dt_, recordEvery_, splitWindow_
+    setup.recordEvery = recordEvery_;
+    drive_ = makeDrive(load_, mat_, setup, dampings_);
+    loadLoss_ = LoadLossDetector(splitWindow_, run_.stopFraction);
+    stops_ = makeStops(run_);
 
     // Random G_f -> the law's per-bar parameters (the field itself is not kept).
     {
@@ -91,7 +75,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
-    cd_ = CentralDifference(dt_, Df_);
+    cd_ = nodeUpdate(dampings_, dt_);
     layerDamping_.assign(lat_.numLayers(), 0.0);
 }
 
@@ -148,7 +132,7 @@ std::vector<std::uint8_t> Simulation::damageStates() const {
 double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
 
 void Simulation::computeForces() {
-    std::visit([&](auto& law) { computeInternalForces(lat_, u_, law, g_, f_); }, law_);
+    layered([](int) {});
 }
 
 const std::vector<std::int32_t>& Simulation::group(const std::string& name) const {
@@ -201,9 +185,7 @@ CurvePoint Simulation::measure() const {
 
 void Simulation::step() {
     // One visit of the law per step: the layered pass is compiled for it.
-    std::visit([this](auto& law) {
-        layeredForces(lat_, u_, g_, f_, law.rows(), [this](int m) { layerDamping_[m] = advanceNodes(m); });
-    }, law_);
+    layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
     finishStep();
 }
 
@@ -223,9 +205,8 @@ void Simulation::finishStep() {
     // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
     // Under opening control the servo moves U from state n (its opening is that of state n).
     const double tNext = time_ + dt_, Uback = driveBefore(), Unow = driveNow();
-    if (openingControl()) servo_.advance(dt_, time_, opening_, drive_);
-    else if (tail_.active()) tail_.advance(dt_, drive_.v0, int(step_ % recordEvery_), recordEvery_);
-    const double Unext = openingControl() ? servo_.U : tail_.active() ? tail_.U : drive_.displacement(tNext);
+    const DriveStep next{time_, dt_, int(step_ % recordEvery_), recordEvery_, opening_};
+    const double Unext = std::visit([&](auto& d) { return d.next(next); }, drive_);
     const double centred = 0.5 * (Unext - Uback);
     // Per owned layer: damping work, external work, support reaction (state n);
     // one exchange of them per step, added in layer order: the same sums for
@@ -257,13 +238,35 @@ void Simulation::finishStep() {
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
 }
 
+// Each part's state, by role and name: the drive, the load-loss test, the stop rules, the dampings, the quasi-static flag.
+namespace {
+template <class Parts>
+std::vector<std::pair<std::string, std::vector<double>>> partStates(const Drives& drive, const LoadLossDetector& loss,
+                                                                    const std::vector<StopRules>& stops,
+                                                                    const Parts& dampings, const KineticAtPeak& k) {
+    std::vector<std::pair<std::string, std::vector<double>>> s;
+    s.push_back(std::visit([](const auto& d) { return partState("drive", d); }, drive));
+    s.push_back(partState("test", loss));
+    for (const StopRules& r : stops) s.push_back(std::visit([](const auto& x) { return partState("stop", x); }, r));
+    std::apply([&](const auto&... d) { (s.push_back(partState("damping", d)), ...); }, dampings);
+    s.emplace_back("quasi_static", k.state());
+    return s;
+}
+}  // namespace
+
+std::vector<std::string> Simulation::partNames() const {
+    std::vector<std::string> names;
+    for (const auto& [name, state] : partStates(drive_, loadLoss_, stops_, dampings_, kineticAtPeak_))
+        names.push_back(name);
+    return names;
+}
+
 Checkpoint Simulation::checkpoint() const {
     if (lat_.isSlab()) throw std::logic_error("checkpoints of a run split over MPI ranks are not supported");
     if (!progress_.pendingAdvance && progress_.summary.stopReason.empty())
         throw std::logic_error("a checkpoint is taken at a record: from run()'s observer, or once run() returned");
-    Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_,
-                 drive_.speedupStart, servo_.U, servo_.Uprev, step_, progress_, {}};
-    if (tail_.active()) c.tailDrive = tail_.state();
+    Checkpoint c{u_, v_, f_, {}, {}, time_, externalWork_, dampingWork_, step_, progress_,
+                 partStates(drive_, loadLoss_, stops_, dampings_, kineticAtPeak_)};
     std::visit([&](const auto& law) {
         for (const auto& [name, values] : law.arrays()) c.bars.emplace_back(name, *values);
         c.softening = law.softeningRows();
@@ -278,6 +281,11 @@ void Simulation::restore(const Checkpoint& c) {
                       c.softening.size() == lat_.barRows.size();
     for (const auto& [name, values] : c.bars) sizesMatch = sizesMatch && values.size() == b;
     if (!sizesMatch) throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+    std::vector<std::string> names = partNames(), saved;
+    for (const auto& [name, state] : c.parts) saved.push_back(name);
+    if (saved != names)
+        throw std::invalid_argument("the checkpoint is of another set-up (its dynamic parts differ: tail_drive, "
+                                    "stop_at, opening control)");
     std::visit([&](auto& law) {
         const auto arrays = law.arrays();
         bool sameLaw = arrays.size() == c.bars.size();
@@ -287,37 +295,49 @@ void Simulation::restore(const Checkpoint& c) {
         law.softeningRows() = c.softening;
     }, law_);
     u_ = c.u, v_ = c.v, f_ = c.f;
-    time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork;
-    drive_.speedupStart = c.speedupStart, step_ = c.step;
-    servo_.U = c.servoU, servo_.Uprev = c.servoUprev;
-    tail_ = AdaptiveDrive(tailLimits());
-    if (!c.tailDrive.empty()) tail_.setState(c.tailDrive);
+    time_ = c.time, externalWork_ = c.externalWork, dampingWork_ = c.dampingWork, step_ = c.step;
+    // The parts in partStates' order.
+    std::size_t k = 0;
+    std::visit([&](auto& d) { d.setState(c.parts[k++].second); }, drive_);
+    loadLoss_.setState(c.parts[k++].second);
+    for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(c.parts[k++].second); }, r);
+    std::apply([&](auto&... d) { (d.setState(c.parts[k++].second), ...); }, dampings_);
+    kineticAtPeak_.setState(c.parts[k++].second);
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
     progress_.pendingAdvance = true;
 }
 
-bool EnergyConvergence::update(double meanStrain, double fracture, bool loadLost) {
-    if (rungStrain_ == 0) {  // the load-loss record: the first rung
-        rungStrain_ = meanStrain, rungFracture_ = fracture;
-        return false;
-    }
-    if (meanStrain < 2 * rungStrain_) return false;
-    const bool quiet = loadLost && fracture - rungFracture_ < growth_ * fracture;
-    quiet_ = quiet ? quiet_ + 1 : 0;
-    rungStrain_ = meanStrain, rungFracture_ = fracture;
-    return quiet_ >= quietRungs;
+// The record's events, in order: the load loss (and the drive's response to
+// it), the stop rules' events, the quasi-static flag.
+void Simulation::recordParts(const CurvePoint& p) {
+    RunSummary& s = progress_.summary;
+    const bool lossBefore = s.loadLoss.reached();
+    const bool lost = loadLoss_.record(p, s);
+    const DriveRecord dr{p, s, !lossBefore && s.loadLoss.reached(), dt_};
+    std::visit([&](auto& d) { d.record(dr); }, drive_);
+    const std::function<bool()> joined = [this] { return facesJoined(); };
+    StopRecord sr{p, s, lost, joined};
+    for (StopRules& r : stops_) std::visit([&](auto& x) { x.record(sr); }, r);
+    kineticAtPeak_.record(p);
+    s.kineticOverWorkAtPeak = kineticAtPeak_.ratio(), s.quasiStaticFlagged = kineticAtPeak_.flagged();
+}
+
+// The first stop rule's reason, in the registry's order, else none ("").
+std::string Simulation::stopReason(const CurvePoint& p) const {
+    for (const StopRules& r : stops_)
+        if (const char* why = std::visit([&](const auto& x) { return x.reason(p, progress_.summary); }, r)) return why;
+    return {};
 }
 
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
     setThreads(run_.threads);
     RunProgress& g = progress_;
     if (!g.started) {
+        refuseDriveJump(load_.strainRate, dt_, mat_.epsP);
         g = RunProgress();
-        g.loadLoss = LoadLossDetector(splitWindow_, run_.stopFraction);
-        g.convergence = EnergyConvergence(run_.convergedGrowth);
-        g.lastCheck = -kSeparationCheckSteps;
+        g.summary.driveStepOverEpsP = driveStep(load_.strainRate, dt_, mat_.epsP);
         g.started = true;
     } else if (!g.pendingAdvance) {
         throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
@@ -363,37 +383,14 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         g.maxResidual = std::max(g.maxResidual, std::abs(p.balanceResidual()));
         s.fractureEnergy = p.fracture;
         s.steps = step_;
-        const bool lost = g.loadLoss.update(p.time, p.stress, s.peakStress, p.broken);
-        if (!s.loadLoss.reached() && lost) {
-            s.loadLoss = {p.step, p.time, p.meanStrain, p.fracture};
-            drive_.speedupStart = time_;
-        }
-        // The adaptive drive: from the end of the fixed ramp to the floor on, it picks
-        // the velocity of the next record interval from state n. Undamped (D_f = 0)
-        // the drive stays fixed: nothing would damp the ringing its changes of speed
-        // set off (measured, 0.08 m on rollers, zeta 0: balance error 0.015 against
-        // 0.008 fixed, and another path to separation).
-        if (load_.tailDrive == TailDrive::Adaptive && !openingControl() && Df_ > 0 && !tail_.active() &&
-            s.loadLoss.reached() && time_ >= drive_.speedupStart + drive_.rampTime)
-            tail_.start(driveNow(), driveBefore(), p.fracture);
-        if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, s.peakStress);
-        if (run_.stopAt == StopAt::Converged && s.loadLoss.reached() && !s.converged.reached() &&
-            g.convergence.update(p.meanStrain, p.fracture, lost))
-            s.converged = {p.step, p.time, p.meanStrain, p.fracture};
-        if (p.broken > 0 && p.stress < 0.5 * s.peakStress && step_ - g.lastCheck >= kSeparationCheckSteps) {
-            g.lastCheck = step_;
-            if (!facesJoined()) s.separation = {p.step, p.time, p.meanStrain, p.fracture};
-        }
+        recordParts(p);
         // The record is complete: what the observer sees (and may checkpoint) is state n with its events.
         g.pendingAdvance = true;
         // Rank 0's answer for every rank (an observer that stops on one rank alone would leave the others waiting).
         const bool keepGoing = commOf(lat_).broadcast(!observer || observer(p));
         g.pendingAdvance = false;
-        if (s.separation.reached()) s.stopReason = "separated";
-        else if (run_.stopAt == StopAt::LoadLoss && s.loadLoss.reached()) s.stopReason = "load_lost";
-        else if (s.converged.reached()) s.stopReason = "converged";
-        else if (p.meanStrain >= run_.finalStrain) s.stopReason = "final_strain";
-        else if (!keepGoing) s.stopReason = "stopped";
+        s.stopReason = stopReason(p);
+        if (s.stopReason.empty() && !keepGoing) s.stopReason = "stopped";
         if (!s.stopReason.empty()) break;
         advance();
     }

@@ -44,7 +44,8 @@ RunEvent eventOf(const py::handle& a) {
     return {std::int64_t(v.at(0)), v.at(1), v.at(2), v.at(3)};
 }
 
-// A checkpoint as named numpy arrays (the keys of checkpoint.npz, README).
+// A checkpoint as named numpy arrays (the keys of checkpoint.npz, README);
+// each dynamic part's state is one array, "part_" + its name.
 py::dict checkpointDict(const Checkpoint& c) {
     py::dict d;
     for (auto [name, f] : {std::pair<const char*, const Field3*>{"u", &c.u}, {"v", &c.v}, {"f", &c.f}}) {
@@ -56,20 +57,19 @@ py::dict checkpointDict(const Checkpoint& c) {
     d["softening"] = toNumpy(c.softening);
     const RunProgress& g = c.progress;
     const RunSummary& s = g.summary;
-    d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, c.speedupStart, g.maxEnergy,
-                                               g.maxResidual, s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak,
-                                               s.fractureEnergy, c.servoU, c.servoUprev});
-    d["convergence"] = toNumpy(g.convergence.state());
-    d["tail_drive"] = toNumpy(c.tailDrive);  // the adaptive drive's state (empty before the load loss)
-    d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, g.lastCheck, s.steps});
+    d["scalars"] = toNumpy(std::vector<double>{c.time, c.externalWork, c.dampingWork, g.maxEnergy, g.maxResidual,
+                                               s.peakStress, s.strainAtPeak, s.edgeStrainAtPeak, s.fractureEnergy,
+                                               s.driveStepOverEpsP});
+    d["counters"] = toNumpy(std::vector<std::int64_t>{c.step, s.steps});
     d["load_loss"] = eventArray(s.loadLoss), d["separation"] = eventArray(s.separation);
-    std::vector<double> window;
-    for (const auto& [t, stress] : g.loadLoss.records()) window.push_back(t), window.push_back(stress);
-    d["load_loss_window"] = toNumpy(window);
+    d["converged"] = eventArray(s.converged);
+    for (const auto& [name, state] : c.parts) d[("part_" + name).c_str()] = toNumpy(state);
     return d;
 }
 
 Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
+    if (!d.contains("part_test_load_loss"))
+        throw std::invalid_argument("a checkpoint of an older ldem (before its dynamic parts): run the case again");
     Checkpoint c;
     for (auto [name, f] : {std::pair<const char*, Field3*>{"u", &c.u}, {"v", &c.v}, {"f", &c.f}}) {
         f->x = fromNumpy<double>(d[(std::string(name) + "_x").c_str()]);
@@ -84,20 +84,16 @@ Checkpoint checkpointOf(const Simulation& sim, const py::dict& d) {
     const auto ct = fromNumpy<std::int64_t>(d["counters"]);
     RunProgress& g = c.progress;
     RunSummary& s = g.summary;
-    c.time = sc.at(0), c.externalWork = sc.at(1), c.dampingWork = sc.at(2), c.speedupStart = sc.at(3);
-    if (sc.size() > 10) c.servoU = sc.at(10), c.servoUprev = sc.at(11);  // older checkpoints: no servo
-    g.maxEnergy = sc.at(4), g.maxResidual = sc.at(5);
-    s.peakStress = sc.at(6), s.strainAtPeak = sc.at(7), s.edgeStrainAtPeak = sc.at(8), s.fractureEnergy = sc.at(9);
-    c.step = ct.at(0), g.lastCheck = ct.at(1), s.steps = ct.at(2);
-    s.loadLoss = eventOf(d["load_loss"]), s.separation = eventOf(d["separation"]);
-    const auto w = fromNumpy<double>(d["load_loss_window"]);
-    std::vector<std::pair<double, double>> records;
-    for (std::size_t i = 0; i + 1 < w.size(); i += 2) records.emplace_back(w[i], w[i + 1]);
-    g.loadLoss = LoadLossDetector(sim.splitWindow(), sim.runParams().stopFraction);
-    g.loadLoss.setRecords(records);
-    g.convergence = EnergyConvergence(sim.runParams().convergedGrowth);
-    if (d.contains("convergence")) g.convergence.setState(fromNumpy<double>(d["convergence"]));  // older: none
-    if (d.contains("tail_drive")) c.tailDrive = fromNumpy<double>(d["tail_drive"]);              // older: none
+    c.time = sc.at(0), c.externalWork = sc.at(1), c.dampingWork = sc.at(2);
+    g.maxEnergy = sc.at(3), g.maxResidual = sc.at(4);
+    s.peakStress = sc.at(5), s.strainAtPeak = sc.at(6), s.edgeStrainAtPeak = sc.at(7), s.fractureEnergy = sc.at(8);
+    s.driveStepOverEpsP = sc.at(9);
+    c.step = ct.at(0), s.steps = ct.at(1);
+    s.loadLoss = eventOf(d["load_loss"]), s.separation = eventOf(d["separation"]), s.converged = eventOf(d["converged"]);
+    for (const std::string& name : sim.partNames()) {  // restore() checks that they are this set-up's
+        const std::string key = "part_" + name;
+        if (d.contains(key.c_str())) c.parts.emplace_back(name, fromNumpy<double>(d[key.c_str()]));
+    }
     g.started = true;
     return c;
 }
@@ -234,7 +230,16 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("energy_balance_error", &RunSummary::energyBalanceError)
         .def_readonly("energy_error", &RunSummary::energyError)
         .def_readonly("steps", &RunSummary::steps)
+        .def_readonly("drive_step_over_eps_p", &RunSummary::driveStepOverEpsP)
+        .def_readonly("kinetic_over_work_at_peak", &RunSummary::kineticOverWorkAtPeak)
+        .def_readonly("quasi_static_flagged", &RunSummary::quasiStaticFlagged)
         .def_readonly("stop_reason", &RunSummary::stopReason);
+    m.attr("DRIVE_STEP_LIMIT") = kDriveStepLimit;
+    m.attr("KINETIC_AT_PEAK_LIMIT") = kKineticAtPeakLimit;
+    m.def("drive_step", &driveStep, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
+          "the drive's displacement in one step over eps_p x the gauge length");
+    m.def("refuse_drive_jump", &refuseDriveJump, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
+          "ValueError when the drive moves by eps_p or more in one step (Simulation.run refuses such a run)");
     py::class_<LoadLossDetector>(m, "LoadLossDetector", "the load-loss test of Simulation.run, one record at a time")
         .def(py::init<double, double>(), py::arg("window"), py::arg("fraction"))
         .def("update", &LoadLossDetector::update, py::arg("time"), py::arg("stress"), py::arg("peak_stress"),

@@ -267,13 +267,15 @@ TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     const CubeRun whole = runCube(TailDrive::Adaptive);
     Simulation first(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     int after = 0;
+    const AdaptiveDrive& tail = std::get<ldem::AdaptiveTailDrive>(first.drivePart()).adaptive();
     first.run([&](const CurvePoint&) {
         // Stop well into the adaptive part, while the drive is faster than the floor.
-        return !(first.adaptiveDrive().active() && first.adaptiveDrive().speedFactor() > 40 && ++after > 25);
+        return !(tail.active() && tail.speedFactor() > 40 && ++after > 25);
     });
-    ASSERT_TRUE(first.adaptiveDrive().active());
+    ASSERT_TRUE(tail.active());
     const Checkpoint c = first.checkpoint();
-    ASSERT_FALSE(c.tailDrive.empty());
+    ASSERT_EQ(c.parts.front().first, "drive_adaptive");
+    ASSERT_EQ(c.parts.front().second.size(), 1 + tail.state().size());  // the fixed drive's, then the adaptive one's
     Simulation second(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     second.restore(c);
     std::vector<CurvePoint> rest;

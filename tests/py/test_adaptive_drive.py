@@ -67,9 +67,9 @@ def test_a_checkpoint_past_the_load_loss_restarts_on_the_same_bits(runs):
     first = test.simulation()
     first.run(lambda p: p.step < stop)
     state = first.checkpoint()
-    drive = np.asarray(state["tail_drive"])
-    assert drive.size and drive[0] == 1.0  # active, its state stored
-    assert drive[3] > 20.0 and drive[4] > 20.0  # S_0, S_1: faster than the fixed drive there
+    drive = np.asarray(state["part_drive_adaptive"])  # the fixed drive's speed-up start, then the adaptive drive's
+    assert drive.size == 9 and drive[1] == 1.0  # active, its state stored
+    assert drive[4] > 20.0 and drive[5] > 20.0  # S_0, S_1: faster than the fixed drive there
     second = test.simulation()
     second.restore(state)
     rest = []

@@ -22,8 +22,8 @@ EXTENSIBLE = ("final_strain", "stop_at")
 def write_checkpoint(path: str, state: dict, parameters: dict, wall_s: float = 0.0) -> None:
     """checkpoint.npz: the arrays of Simulation.checkpoint() (nodes: u_*, v_*,
     f_* by component; bars: kappa, eps_r; rows: softening; the run's scalars,
-    counters, events and load-loss window; tail_drive: the adaptive drive's
-    state past the load loss, empty before), the test's parameters as JSON and
+    counters and events; part_NAME: each dynamic part's state, e.g.
+    part_drive_adaptive, part_test_load_loss, part_stop_separation), the test's parameters as JSON and
     the wall time the run had taken. npz, not HDF5: numpy reads it with
     nothing else installed, and it holds named arrays, which is all a
     checkpoint is."""

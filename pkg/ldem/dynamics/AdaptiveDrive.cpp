@@ -1,0 +1,64 @@
+#include "ldem/dynamics/AdaptiveDrive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace ldem {
+
+double AdaptiveDrive::target(const Limits& l, bool softening, double chainLoad) {
+    if (softening || std::isnan(chainLoad)) return l.floor;
+    return chainLoad > 0 ? std::clamp(l.floor * l.load / chainLoad, l.floor, l.ceiling) : l.ceiling;
+}
+
+double AdaptiveDrive::next(double s, bool softening, double chainLoad, double peakStress) const {
+    double lo = s / lim_.step, hi = s * lim_.step;
+    if (lim_.column > 0) {
+        const double B = lim_.drag * peakStress / lim_.column;
+        lo = std::max(lo, s - B), hi = std::min(hi, (B + s) / (1 + lim_.dampingT));
+    }
+    hi = std::max(hi, lo);  // drag alone above the budget: slow down as fast as inertia allows
+    return std::max(std::clamp(target(lim_, softening, chainLoad), lo, hi), lim_.floor);
+}
+
+void AdaptiveDrive::start(double U0, double Uprev0, double fracture) {
+    active_ = true, U = U0, Uprev = Uprev0, S0_ = S1_ = lim_.floor, fracture_ = fracture;
+    time_ = std::numeric_limits<double>::quiet_NaN();  // the first record starts the average
+}
+
+void AdaptiveDrive::record(double time, double fracture, double stressSupport, double peakStress) {
+    const bool softening = fracture > fracture_;
+    if (std::isnan(time_) || !(lim_.tau > 0)) support_ = stressSupport;
+    else support_ += -std::expm1(-(time - time_) / lim_.tau) * (stressSupport - support_);  // weight 1 - exp(-dt/tau)
+    fracture_ = fracture, time_ = time;
+    S0_ = S1_;
+    S1_ = next(S0_, softening, std::abs(support_) / peakStress, peakStress);
+}
+
+void AdaptiveDrive::setState(const std::vector<double>& s) {
+    active_ = s.at(0) != 0, U = s.at(1), Uprev = s.at(2), S0_ = s.at(3), S1_ = s.at(4), fracture_ = s.at(5);
+    time_ = s.at(6), support_ = s.at(7);
+}
+
+void AdaptiveTailDrive::record(const DriveRecord& r) {
+    fixed_.record(r);
+    const CurvePoint& p = r.point;
+    if (!tail_.active() && r.summary.loadLoss.reached() && p.time >= program().speedupStart + program().rampTime)
+        tail_.start(now(p.time, r.dt), before(p.time, r.dt), p.fracture);
+    if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, r.summary.peakStress);
+}
+
+std::vector<double> AdaptiveTailDrive::state() const {
+    std::vector<double> s = fixed_.state();
+    if (tail_.active())
+        for (double x : tail_.state()) s.push_back(x);
+    return s;
+}
+
+void AdaptiveTailDrive::setState(const std::vector<double>& s) {
+    fixed_.setState(s);
+    tail_ = AdaptiveDrive(tail_.limits());
+    if (s.size() > 1) tail_.setState({s.begin() + 1, s.end()});
+}
+
+}  // namespace ldem

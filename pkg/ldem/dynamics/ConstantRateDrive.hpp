@@ -1,0 +1,72 @@
+// The drive at a constant rate with a smooth start (LDEM_SPEC section 6), and
+// its fixed speed-up after the load loss (tail_drive fixed).
+//
+// Every prescribed degree of freedom follows u = weight * U(t), with U(t) the
+// displacement of the most-pulled point:
+//   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2   for t < t_r  (velocity ramps
+//          v0 (t - t_r / 2)                        for t >= t_r  up as 1 - cos)
+// so velocity and acceleration start at zero. v0 = strain rate x height.
+// Once the load is lost the specimen hangs on mechanisms that carry almost no
+// force, and separation needs strains far beyond the peak; a faster drive
+// reaches them in fewer steps: the drive speeds up by a factor S
+// (loss_speedup), with the same smooth ramp starting at t_s:  U(t) + (S - 1) U(t - t_s).
+// The other drives (AdaptiveDrive.hpp, ServoDrive.hpp) share this program.
+// Parameters: LDEM_DRIVE_PARAMETERS (strain_rate, ramp_time), LDEM_SPEEDUP_PARAMETERS (loss_speedup).
+#pragma once
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "ldem/Parameters.hpp"
+#include "ldem/dynamics/Part.hpp"
+
+namespace ldem {
+
+// Integral over [0, t] of a velocity that rises from 0 to 1 as (1 - cos(pi t/t_r))/2.
+inline double smoothRampIntegral(double t, double tr) {
+    constexpr double pi = 3.14159265358979323846;
+    if (t <= 0) return 0;
+    if (t < tr) return 0.5 * (t - tr / pi * std::sin(pi * t / tr));
+    return t - 0.5 * tr;
+}
+// Its derivative: the velocity (1 - cos(pi t/t_r))/2, then 1.
+inline double smoothRampVelocity(double t, double tr) {
+    constexpr double pi = 3.14159265358979323846;
+    if (t <= 0) return 0;
+    return t < tr ? 0.5 * (1 - std::cos(pi * t / tr)) : 1.0;
+}
+
+struct Drive {
+    double v0 = 0;        // final velocity of the most-pulled point [m/s]
+    double rampTime = 0;  // [s]
+    double speedup = 1;   // velocity factor after speedupStart
+    double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
+    double displacement(double t) const;
+};
+
+class ConstantRateDrive {
+public:
+    static constexpr const char* name = "fixed";
+    struct Params {
+        LDEM_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
+        LDEM_SPEEDUP_PARAMETERS(LDEM_DECLARE_MEMBER)
+    };
+    ConstantRateDrive() = default;  // at rest: v0 = 0
+    // v0 = strain_rate x the gauge length; the ramp ramp_time, or two fundamental periods (0).
+    ConstantRateDrive(const Params& p, double gaugeLength, double period1)
+        : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {}
+    double now(double t, double) const { return program_.displacement(t); }
+    double before(double t, double dt) const { return program_.displacement(t - dt); }
+    double next(const DriveStep& c) const { return program_.displacement(c.time + c.dt); }
+    void record(const DriveRecord& r) {
+        if (r.lossNow) program_.speedupStart = r.point.time;
+    }
+    const Drive& program() const { return program_; }
+    std::vector<double> state() const { return {program_.speedupStart}; }
+    void setState(const std::vector<double>& s) { program_.speedupStart = s.at(0); }
+
+private:
+    Drive program_;
+};
+
+}  // namespace ldem

@@ -1,0 +1,58 @@
+// When is a specimen that does not separate done (stop_at converged)? A
+// triangular cube hinges about its least-pulled edge: past its load loss it
+// hangs on chains that straighten and break one column of modules after the
+// other, ever nearer the hinge, and whether the last ones ever break depends
+// on the lateral freedom of the faces. Its fracture energy U(e) grows in
+// bursts as the mean strain e doubles. The test is on doublings: rungs e_0 =
+// the strain at load loss, then the first record at or past 2 e_k. A rung is
+// quiet when
+//     U(e_k+1) - U(e_k) < growth x U(e_k+1)    and the load is lost there
+// (stress averaged over the split window below stopFraction x peak), and U has
+// converged after `quietRungs` quiet rungs in a row. One is not enough
+// (measured, 0.08 m cube, seed 1: a quiet doubling to e = 6.8e-3, then U grew
+// by 49 % to e = 0.11 as the next columns broke). U_final = U there.
+// Parameters: LDEM_CONVERGED_STOP_PARAMETERS (converged_growth).
+#pragma once
+#include <vector>
+
+#include "ldem/Parameters.hpp"
+#include "ldem/dynamics/Part.hpp"
+
+namespace ldem {
+
+class EnergyConvergence {
+public:
+    static constexpr int quietRungs = 2;
+    explicit EnergyConvergence(double growth = 0.01) : growth_(growth) {}
+    // Fed the records past the load loss; true once U has converged.
+    bool update(double meanStrain, double fracture, bool loadLost);
+    // Its state, for a checkpoint, and back.
+    std::vector<double> state() const { return {rungStrain_, rungFracture_, double(quiet_)}; }
+    void setState(const std::vector<double>& s) { rungStrain_ = s.at(0), rungFracture_ = s.at(1), quiet_ = int(s.at(2)); }
+
+private:
+    double growth_;
+    double rungStrain_ = 0, rungFracture_ = 0;  // the last rung (0: none yet)
+    int quiet_ = 0;                             // quiet rungs in a row
+};
+
+// The stop rule: the summary's converged event, and the run ends there.
+class ConvergedStop {
+public:
+    static constexpr const char* name = "converged";
+    struct Params {
+        LDEM_CONVERGED_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
+    };
+    explicit ConvergedStop(const Params& p) : convergence_(p.convergedGrowth) {}
+    void record(StopRecord& r);
+    const char* reason(const CurvePoint&, const RunSummary& s) const {
+        return s.converged.reached() ? "converged" : nullptr;
+    }
+    std::vector<double> state() const { return convergence_.state(); }
+    void setState(const std::vector<double>& s) { convergence_.setState(s); }
+
+private:
+    EnergyConvergence convergence_;
+};
+
+}  // namespace ldem

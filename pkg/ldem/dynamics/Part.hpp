@@ -1,0 +1,52 @@
+// The dynamic parts of a run, in the manner of YADE's engines or LAMMPS's
+// fixes: each is one class in one header (and its .cpp), with its parameters
+// (its own X-macro list in Parameters.hpp, spliced into its group's list, read
+// as its Params), its state for checkpoints and the hooks below; Registry.hpp
+// lists them and builds the ones a run chose by name. Simulation steps them
+// in order and knows none of their rules.
+//
+// Every part:   static constexpr const char* name;   state() -> std::vector<double>;   setState(state)
+// A drive (Drives): the displacement U of the drive's DOFs (Specimen.hpp)
+//   double now(t_n, dt) const       U(t_n)
+//   double before(t_n, dt) const    U(t_n-1)
+//   double next(const DriveStep&)   U(t_n+1), once per step (advances its state)
+//   void record(const DriveRecord&) at each record, after the load-loss test
+//   const Drive& program() const    its program (ConstantRateDrive.hpp): v0, ramp
+// A stop rule (StopRules):
+//   void record(StopRecord&)        at each record, before the observer: its event in the summary
+//   const char* reason(point, summary) const   after the observer: its stop reason, or nullptr
+// A damping (Dampings, all of them applied in the registry's order), built from (RunParams, omega_1):
+//   CentralDifference nodeUpdate(CentralDifference) const   the node update with its terms (Integrator.hpp)
+//   Rows barRows(Rows) const         the force loop's row functor with its bar forces (laws/BarLaw.hpp)
+#pragma once
+#include <cstdint>
+#include <functional>
+
+#include "ldem/dynamics/Record.hpp"
+
+namespace ldem {
+
+// A step of the drive: from state n (time t_n) to n+1.
+struct DriveStep {
+    double time = 0, dt = 0;
+    int k = 0, R = 1;      // the step within its record interval (0..R-1), and R (recordEvery)
+    double opening = 0;    // the controlled probe at state n (opening control)
+};
+
+// A record, for the drive.
+struct DriveRecord {
+    const CurvePoint& point;
+    const RunSummary& summary;
+    bool lossNow;  // the load is lost from this record on (summary.loadLoss is this record)
+    double dt;
+};
+
+// A record, for the stop rules.
+struct StopRecord {
+    const CurvePoint& point;
+    RunSummary& summary;
+    bool lost;                                // the load-loss test's answer at this record
+    const std::function<bool()>& facesJoined;  // some chain of intact bars joins the faces (costly: a union-find)
+};
+
+}  // namespace ldem

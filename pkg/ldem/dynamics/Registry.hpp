@@ -1,0 +1,78 @@
+// The registry of the dynamic parts (Part.hpp): which exist, and the ones a
+// run is built with, chosen by name (tail_drive, stop_at; opening control when
+// the specimen has a controlled probe).
+//
+// A new part is a header (and .cpp) in this folder, its line below, its
+// parameters' list in Parameters.hpp and, for a drive or a stop, its choice's
+// name in that parameter's domain and its case in makeDrive / makeStops.
+// A new damping: its header (a constructor from the RunParams and omega_1), and
+// its type at the end of Dampings.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/RunParams.hpp"
+#include "ldem/dynamics/AdaptiveDrive.hpp"
+#include "ldem/dynamics/ConstantRateDrive.hpp"
+#include "ldem/dynamics/ConvergedStop.hpp"
+#include "ldem/dynamics/FinalStrainStop.hpp"
+#include "ldem/dynamics/LoadLoss.hpp"
+#include "ldem/dynamics/LoadLossStop.hpp"
+#include "ldem/dynamics/MassDamping.hpp"
+#include "ldem/dynamics/SeparationStop.hpp"
+#include "ldem/dynamics/ServoDrive.hpp"
+
+namespace ldem {
+
+using Drives = std::variant<ConstantRateDrive, AdaptiveTailDrive, ServoDrive>;
+using StopRules = std::variant<SeparationStop, LoadLossStop, ConvergedStop, FinalStrainStop>;
+using Dampings = std::tuple<MassDamping>;  // every one applied, in this order
+
+// What the parts are built from, beyond their parameters.
+struct DynamicsSetup {
+    double omega1 = 0;       // [rad/s]
+    double dt = 0;           // [s]
+    double gaugeLength = 0;  // [m]
+    double splitWindow = 0;  // [s]
+    int recordEvery = 1;
+    bool openingControl = false;  // the specimen has a controlled probe
+};
+
+Dampings makeDampings(const RunParams& run, double omega1);
+double dampingCoefficient(const Dampings& d);  // D_f of the mass-proportional damping [1/s]
+// The program of every drive (v0, the ramp, the speed-up), whatever the drive.
+ConstantRateDrive fixedDrive(const LoadingParams& load, const DynamicsSetup& s);
+// servo under opening control, else tail_drive: adaptive (if damped: D_f > 0) or fixed. Checks their parameters.
+Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSetup& s, const Dampings& d);
+// separation, then stop_at's rule (load_loss, converged; none for separation), then the final strain.
+std::vector<StopRules> makeStops(const RunParams& run);
+
+// The node update with every damping's terms, from the undamped one.
+inline CentralDifference nodeUpdate(const Dampings& d, double dt) {
+    return std::apply([&](const auto&... damping) {
+        CentralDifference cd(dt, 0.0);
+        ((cd = damping.nodeUpdate(cd)), ...);
+        return cd;
+    }, d);
+}
+
+// The law's row functor with every damping's bar forces.
+template <std::size_t I = 0, class Rows>
+auto dampedRows(const Dampings& d, Rows rows) {
+    if constexpr (I == std::tuple_size_v<Dampings>) return rows;
+    else return dampedRows<I + 1>(d, std::get<I>(d).barRows(rows));
+}
+
+// A part's name and state, for checkpoints: "drive_fixed", "stop_separation", "damping_mass", ...
+template <class Part>
+std::pair<std::string, std::vector<double>> partState(const char* role, const Part& p) {
+    return {std::string(role) + "_" + Part::name, p.state()};
+}
+
+}  // namespace ldem

@@ -1,0 +1,67 @@
+// Opening control: the drive moves so that an opening c (a probe, e.g. the
+// CMOD) follows the program c*(t) = r S(t), S the smooth ramp above. The drive
+// displacement U is state, advanced once per step from state n:
+//   U(n+1) = U(n) + dt clamp((r S'(t) + g (c*(t) - c)) / a, -v_max S'(t), v_max S'(t)),  t = t_n + dt/2,
+// with a = c / U the secant ratio of opening to drive displacement (unknown,
+// and the velocity v_max S'(t), until both have moved): the velocity that
+// opens the mouth at the program's rate, plus a correction of the lag at the
+// rate g [1/s]. v_max (Drive::v0, displacement control's rate) is the actuator's
+// speed limit, reached smoothly. Why g = D_f / 2: with mass-proportional
+// damping every mode has 2 zeta_i omega_i = D_f, and the integral loop
+// U' = (g/a) (c* - c) around a mode that opens the mouth as c = a_t U crosses
+// -180 degrees at omega_i with the gain (g/a) a_t / D_f; below 1, stable, as
+// long as the tangent ratio a_t < 2a. Past the peak a crack that runs on its
+// own opens the mouth ahead of the program (c > c*), and the drive backs off.
+// Parameters: LDEM_SERVO_PARAMETERS (opening_rate); the program (v_max, the ramp) is the fixed drive's.
+#pragma once
+#include <vector>
+
+#include "ldem/Parameters.hpp"
+#include "ldem/dynamics/ConstantRateDrive.hpp"
+#include "ldem/dynamics/Part.hpp"
+
+namespace ldem {
+
+struct Servo {
+    double rate = 0;      // r [m/s]
+    double gain = 0;      // g [1/s]
+    double U = 0, Uprev = 0;  // drive displacement at t_n and t_n-1 [m]
+    // Drive velocity at time t, from the opening c at t_n; the actuator's
+    // speed limit v_max and the ramp are those of the displacement program.
+    double velocity(double t, double opening, const Drive& program) const;
+    // U(n+1) from U(n) with the velocity at the middle of [t_n, t_n+1] (the program's ramp, there, to O(dt^3)).
+    void advance(double dt, double t, double opening, const Drive& program) {
+        Uprev = U, U += dt * velocity(t + 0.5 * dt, opening, program);
+    }
+};
+
+
+// The drive part: U follows the servo from the start.
+class ServoDrive {
+public:
+    static constexpr const char* name = "servo";
+    struct Params {
+        LDEM_SERVO_PARAMETERS(LDEM_DECLARE_MEMBER)
+    };
+    // The servo at opening_rate with the gain g = D_f / 2 (above), on the fixed drive's program.
+    ServoDrive(const Params& p, const ConstantRateDrive& fixed, double Df) : program_(fixed.program()) {
+        servo_.rate = p.openingRate, servo_.gain = 0.5 * Df;
+    }
+    double now(double, double) const { return servo_.U; }
+    double before(double, double) const { return servo_.Uprev; }
+    double next(const DriveStep& c) {
+        servo_.advance(c.dt, c.time, c.opening, program_);
+        return servo_.U;
+    }
+    void record(const DriveRecord&) {}
+    const Drive& program() const { return program_; }
+    const Servo& servo() const { return servo_; }
+    std::vector<double> state() const { return {servo_.U, servo_.Uprev}; }
+    void setState(const std::vector<double>& s) { servo_.U = s.at(0), servo_.Uprev = s.at(1); }
+
+private:
+    Drive program_;
+    Servo servo_;
+};
+
+}  // namespace ldem

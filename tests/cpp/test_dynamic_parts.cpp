@@ -1,0 +1,170 @@
+// Each dynamic part (pkg/ldem/dynamics/) round-trips its checkpoint state: a
+// part fed some records, its state() set into a new part, goes on exactly as
+// the first one (the same U, the same events) for the next records and steps.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <vector>
+
+#include "ldem/dynamics/QuasiStatic.hpp"
+#include "ldem/dynamics/Registry.hpp"
+
+namespace {
+using namespace ldem;
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// A record of a softening specimen after its peak: the stress falls and rings, bars break.
+CurvePoint recordAt(int k) {
+    CurvePoint p;
+    p.step = 100 * k, p.time = 1e-4 * k, p.meanStrain = 1e-5 * k;
+    p.stress = 2e6 * std::exp(-0.2 * k) * (1 + 0.3 * std::sin(1.7 * k));
+    p.fracture = 0.1 * std::sqrt(double(k)), p.broken = k > 3 ? 10 * k : 0;
+    p.externalWork = 1.0 + 0.2 * k, p.kinetic = 0.01 * (1 + std::sin(0.9 * k));
+    return p;
+}
+
+constexpr double kDt = 1e-6;
+constexpr int kR = 100;
+
+// Drives: `records` records (with a load loss at record 4) and their steps, then the state
+// into `fresh`, then 20 more records on both: U(n+1) of every step bit for bit.
+template <class D>
+void driveRoundTrip(D first, D fresh, int records) {
+    RunSummary s;
+    s.peakStress = 2e6;
+    double opening = 0;
+    auto go = [&](D& d, RunSummary& sum, int from, int to, std::vector<double>& U) {
+        for (int k = from; k < to; ++k) {
+            const CurvePoint p = recordAt(k);
+            const bool lossNow = k == 4;
+            if (lossNow) sum.loadLoss = RunEvent::at(p);
+            d.record(DriveRecord{p, sum, lossNow, kDt});
+            for (int j = 0; j < kR; ++j) {
+                opening = 1e-6 * (k + j * 1e-2);
+                U.push_back(d.next(DriveStep{p.time + j * kDt, kDt, j, kR, opening}));
+            }
+            U.push_back(d.now(p.time, kDt)), U.push_back(d.before(p.time, kDt));
+        }
+    };
+    std::vector<double> before, a, b;
+    go(first, s, 0, records, before);
+    fresh.setState(first.state());
+    RunSummary t = s;
+    go(first, s, records, records + 20, a);
+    go(fresh, t, records, records + 20, b);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) ASSERT_TRUE(sameBits(a[i], b[i])) << i;
+    EXPECT_NE(a.front(), a.back());  // it moved
+}
+
+ConstantRateDrive fixedDrive() {
+    ConstantRateDrive::Params p;
+    p.strainRate = 0.5, p.rampTime = 2e-4, p.lossSpeedup = 20;
+    return ConstantRateDrive(p, 0.1, 1e-4);
+}
+
+AdaptiveDrive::Limits limits() { return {20, 2000, 0.005, 0.1, 1.1, 2e-4, 1e3, 1e-3}; }
+
+TEST(DynamicParts, TheFixedDriveRoundTripsItsSpeedupStart) {
+    driveRoundTrip(fixedDrive(), fixedDrive(), 8);  // past the load loss: the speed-up has started
+    ConstantRateDrive d = fixedDrive();
+    EXPECT_TRUE(std::isinf(d.state().at(0)));  // none before the load loss
+}
+
+TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
+    const AdaptiveTailDrive d(fixedDrive(), limits());
+    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 3);   // not started: the fixed drive's state only
+    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 12);  // started: its U, factors, averages too
+    AdaptiveTailDrive started(fixedDrive(), limits());
+    RunSummary s;
+    s.peakStress = 2e6;
+    for (int k = 0; k < 12; ++k) {
+        const CurvePoint p = recordAt(k);
+        if (k == 4) s.loadLoss = RunEvent::at(p);
+        started.record(DriveRecord{p, s, k == 4, kDt});
+    }
+    ASSERT_TRUE(started.adaptive().active());
+    EXPECT_EQ(started.state().size(), 9u);
+}
+
+TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {
+    ServoDrive::Params p;
+    p.openingRate = 1e-3;
+    driveRoundTrip(ServoDrive(p, fixedDrive(), 50.0), ServoDrive(p, fixedDrive(), 50.0), 6);
+}
+
+// Stop rules and the load-loss test: the same events and reasons after the round trip.
+template <class Part, class Feed>
+void recordRoundTrip(Part first, Part fresh, int records, Feed feed) {
+    RunSummary s;
+    s.peakStress = 2e6;
+    for (int k = 0; k < records; ++k) feed(first, s, recordAt(k));
+    fresh.setState(first.state());
+    RunSummary t = s;
+    for (int k = records; k < records + 30; ++k) {
+        const CurvePoint p = recordAt(k);
+        feed(first, s, p), feed(fresh, t, p);
+        EXPECT_EQ(first.state(), fresh.state()) << k;
+    }
+    EXPECT_EQ(s.loadLoss.step, t.loadLoss.step);
+    EXPECT_EQ(s.separation.step, t.separation.step);
+    EXPECT_EQ(s.converged.step, t.converged.step);
+}
+
+TEST(DynamicParts, TheLoadLossTestRoundTripsItsWindow) {
+    int lost = 0;
+    recordRoundTrip(LoadLossDetector(5e-4, 0.5), LoadLossDetector(5e-4, 0.5), 6,
+                    [&](LoadLossDetector& d, RunSummary& s, const CurvePoint& p) { lost += d.record(p, s); });
+    EXPECT_GT(lost, 0);
+    EXPECT_EQ(LoadLossDetector(5e-4, 0.5).state().size(), 0u);
+}
+
+template <class Stop>
+auto stopFeed(std::function<bool()> joined) {
+    return [joined](Stop& stop, RunSummary& s, const CurvePoint& p) {
+        if (p.step == 400 && !s.loadLoss.reached()) s.loadLoss = RunEvent::at(p);
+        StopRecord r{p, s, p.step >= 400, joined};
+        stop.record(r);
+    };
+}
+
+TEST(DynamicParts, TheSeparationStopRoundTripsItsLastTest) {
+    int tests = 0;
+    // Joined until the fifth union-find: the event falls after the round trip.
+    const std::function<bool()> joined = [&] { return ++tests < 10; };
+    recordRoundTrip(SeparationStop(), SeparationStop(), 8, stopFeed<SeparationStop>(joined));
+    EXPECT_GT(tests, 5);
+}
+
+TEST(DynamicParts, TheConvergedStopRoundTripsItsRungs) {
+    ConvergedStop::Params p;
+    p.convergedGrowth = 0.3;
+    recordRoundTrip(ConvergedStop(p), ConvergedStop(p), 7, stopFeed<ConvergedStop>([] { return true; }));
+}
+
+TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
+    FinalStrainStop::Params f;
+    EXPECT_TRUE(FinalStrainStop(f).state().empty());
+    EXPECT_TRUE(LoadLossStop().state().empty());
+    MassDamping::Params m;
+    m.zeta = 0.02;
+    const Dampings d{MassDamping(m, 800.0)};
+    EXPECT_TRUE(std::get<MassDamping>(d).state().empty());
+    // Its node update is central differences with D_f = 2 zeta omega_1, bit for bit.
+    const CentralDifference cd = nodeUpdate(d, kDt), want(kDt, 2 * 0.02 * 800.0);
+    EXPECT_TRUE(sameBits(cd.a, want.a) && sameBits(cd.b, want.b) && sameBits(cd.Df, want.Df));
+}
+
+TEST(DynamicParts, TheQuasiStaticFlagRoundTripsItsPeakRecord) {
+    KineticAtPeak first, fresh;
+    for (int k = 0; k < 3; ++k) first.record(recordAt(k));
+    fresh.setState(first.state());
+    for (int k = 3; k < 30; ++k) first.record(recordAt(k)), fresh.record(recordAt(k));
+    EXPECT_TRUE(sameBits(first.ratio(), fresh.ratio()));
+    EXPECT_GT(first.ratio(), 0.0);
+}
+
+}  // namespace
