@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "ldem/BarDashpot.hpp"
 #include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
@@ -52,13 +53,45 @@ private:
     std::vector<double*> base_;  // per layer
 };
 
-// The bars of a row whose path is the law's (laws/BarLaw.hpp: RowPath), n of
-// them, from the displacements at their ends; the row moves on to the exact
-// path once a bar is beyond the series.
+// The law, and the dashpots if there are (BarDashpot.hpp), for the n bars of a
+// row, each from its stretch(p) (a SeriesStretch or a BarStretch): the same
+// loop for both paths; m the row's bar layer.
+template <class Law, class StretchOf>
+void lawBars(const Law& rowLaw, const BarRow& row, int m, double EA, double EAend, double invL, StretchOf stretch,
+             const DashpotPass& dash, double* gx, double* gy, double* gz) {
+    const std::int64_t n = row.count;
+    if (!dash.state) {
+#pragma omp simd
+        for (std::int64_t p = 0; p < n; ++p)
+            rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA, stretch(p), gx[p], gy[p], gz[p]);
+        return;
+    }
+    const Field3& v = *dash.v;
+    const double *ax = &v.x[row.nodeA], *ay = &v.y[row.nodeA], *az = &v.z[row.nodeA];
+    const double *bx = &v.x[row.nodeB], *by = &v.y[row.nodeB], *bz = &v.z[row.nodeB];
+    double* force = &dash.state->force[row.first];
+    const double beta = dash.state->beta;
+    double closing = 0, opening = 0;
+#pragma omp simd reduction(+ : closing, opening)
+    for (std::int64_t p = 0; p < n; ++p) {
+        const double EAp = (p == 0 || p == n - 1) ? EAend : EA;
+        const auto s = stretch(p);
+        const double r = rowLaw(p, EAp, s, gx[p], gy[p], gz[p]);
+        addDashpot(beta, EAp, invL, r, s.dx, s.dy, s.dz, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p], force[p],
+                   closing, opening, gx[p], gy[p], gz[p]);
+    }
+    dash.state->closing[m] += closing * dash.state->halfDt;
+    dash.state->opening[m] += opening * dash.state->halfDt;
+}
+
+// The bars of a row whose path is the law's (laws/BarLaw.hpp: RowPath), from
+// the displacements at their ends; the row moves on to the exact path once a
+// bar is beyond the series.
 template <class Law>
-void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, std::int64_t n, double EA, double EAend,
-            const double* ax, const double* ay, const double* az, const double* bx, const double* by,
-            const double* bz, double* gx, double* gy, double* gz) {
+void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, const BarRow& row, int m, double EA,
+            double EAend, const double* ax, const double* ay, const double* az, const double* bx, const double* by,
+            const double* bz, const DashpotPass& dash, double* gx, double* gy, double* gz) {
+    const std::int64_t n = row.count;
     if (path == kSeriesPath) {  // still within the series? (reads u only: the law's state is not touched twice)
         double xMax = 0;
 #pragma omp simd reduction(max : xMax)
@@ -67,23 +100,22 @@ void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, std::int6
         if (xMax > kElasticSeriesLimit) path = kExactPath;
     }
     rowLaw.setPath(path);
-    if (path == kSeriesPath) {
-#pragma omp simd
-        for (std::int64_t p = 0; p < n; ++p)
-            rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA,
-                   seriesStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]), gx[p], gy[p], gz[p]);
-    } else {
-#pragma omp simd
-        for (std::int64_t p = 0; p < n; ++p)
-            rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA, barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]),
-                   gx[p], gy[p], gz[p]);
-    }
+    if (path == kSeriesPath)
+        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [&](std::int64_t p) {
+            return seriesStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
+        }, dash, gx, gy, gz);
+    else
+        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [&](std::int64_t p) {
+            return barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
+        }, dash, gx, gy, gz);
 }
 
 // Calls the bar law's row functor (laws/BarLaw.hpp) for every bar of layer m, writing the force
 // on its A node into the layer's g.
 template <class Law>
-void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers& g, const Law& law) {
+void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers& g, const Law& law,
+              const DashpotPass& dash) {
+    if (dash.state) dash.state->closing[m] = dash.state->opening[m] = 0.0;
     for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
         const BarRow& row = lat.barRows[r];
         const BarFamily fam = lat.families[row.family];  // a copy: the stores to g cannot alias it
@@ -107,7 +139,8 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
             if (excess <= 0) continue;
             path = kSeriesPath;
         }
-        if constexpr (!Law::kElasticOnly) lawRow(rowLaw, path, fam, n, EA, EAend, ax, ay, az, bx, by, bz, gx, gy, gz);
+        if constexpr (!Law::kElasticOnly)
+            lawRow(rowLaw, path, fam, row, m, EA, EAend, ax, ay, az, bx, by, bz, dash, gx, gy, gz);
     }
 }
 
@@ -120,14 +153,14 @@ void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f);
 // the bars of layers m-2 .. m (bars belong to the layer of their lower end).
 template <class Law, class AfterLayer>
 void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Field3& f, const Law& law,
-                   AfterLayer afterLayer) {
+                   AfterLayer afterLayer, const DashpotPass& dash = {}) {
 #pragma omp parallel
     {
 #pragma omp single
         g.prepare(lat, threadCount());
         const auto [m0, m1] = layerRange(lat.forceLayers(), threadIndex(), threadCount());
         for (int m = m0; m < m1; ++m) {
-            barLayer(lat, m, u, g, law);
+            barLayer(lat, m, u, g, law, dash);
             if (m0 == 0 || m >= m0 + 2) nodeLayer(lat, m, g, f), afterLayer(m);
         }
         // The two lowest layers of a range need (and their nodes are read by)

@@ -106,6 +106,13 @@
       "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
       "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")
 
+// Dashpots in the bars that have left their elastic branch (dynamics/BarDashpots.hpp).
+#define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
+    X(double, zetaHigh, "zeta_high", 0.0, "", Domain::closedOpen(0, 1),                                      \
+      "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
+      "their elastic branch (zeta_high omega/omega_max on mode omega); they damp the modes that clap across "  \
+      "closing cracks; the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
+
 // The converged stop (dynamics/ConvergedStop.hpp).
 #define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
     X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                             \
@@ -127,6 +134,7 @@
 #define LDEM_RUN_PARAMETERS(X)                                                                               \
     X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")   \
     LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
+    LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                           \
     X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}),\
       "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "    \
       "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss")\

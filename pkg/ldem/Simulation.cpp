@@ -39,15 +39,16 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
             << "vertical axis: use at least 2 modules a side or hold the upper face laterally";
         throw std::invalid_argument(msg.str());
     }
+    dampings_ = makeDampings(run_, DampingSetup{freq_.omega1, freq_.omegaMax, lat_.numBars(), lat_.numLayers()});
     const double limit = stableTimeStepLimit();
     if (run_.dt > limit) {
         std::ostringstream msg;
         msg << "time step " << run_.dt << " s is above the stability limit " << limit << " s (" << run_.dtSafety
-            << " x 2/omega_max, omega_max = " << freq_.omegaMax << " rad/s)";
+            << " x 2/omega_max x " << stepFactor(dampings_) << " for zeta_high, omega_max = " << freq_.omegaMax
+            << " rad/s)";
         throw std::invalid_argument(msg.str());
     }
     dt_ = run_.dt > 0 ? run_.dt : limit;
-    dampings_ = makeDampings(run_, freq_.omega1);
     const double pi = 3.14159265358979323846;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * (2 * pi / freq_.omega1);
     DynamicsSetup setup{freq_.omega1, dt_, meas_.gaugeLength, splitWindow_, 1, openingControl()};
@@ -129,7 +130,9 @@ std::vector<std::uint8_t> Simulation::damageStates() const {
     return s;
 }
 
-double Simulation::stableTimeStepLimit() const { return run_.dtSafety * stableTimeStep(freq_.omegaMax); }
+double Simulation::stableTimeStepLimit() const {
+    return run_.dtSafety * stableTimeStep(freq_.omegaMax) * stepFactor(dampings_);
+}
 
 void Simulation::computeForces() {
     layered([](int) {});
@@ -145,6 +148,12 @@ double Simulation::groupForce(const std::vector<std::int32_t>& nodes) const {
     const std::vector<double>& f = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
     return listSum(lat_, nodes.size(), [&](std::size_t k) { return nodes[k]; },
                    [&](std::size_t k) { return f[nodes[k]]; });
+}
+
+double Simulation::ownedLayerSum(const std::function<double(int)>& ofLayer) const {
+    std::vector<double> owned(std::size_t(lat_.ownEnd - lat_.ownBegin));
+    for (std::size_t i = 0; i < owned.size(); ++i) owned[i] = ofLayer(lat_.ownBegin + int(i));
+    return gatherLayerSums(commOf(lat_), owned, 1)[0];
 }
 
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
@@ -179,7 +188,8 @@ CurvePoint Simulation::measure() const {
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
     p.externalWork = externalWork_;
-    p.damping = dampingWork_;
+    // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
+    p.damping = dampingWork_ + ownedLayerSum([&](int m) { return sumOver(dampings_, [m](const auto& d) { return d.closingWork(m); }); });
     return p;
 }
 
@@ -214,7 +224,11 @@ void Simulation::finishStep() {
     const int owned = lat_.ownEnd - lat_.ownBegin;
     std::vector<double>& partial = stepPartials_;
     partial.assign(3 * std::size_t(owned), 0.0);
-    for (int i = 0; i < owned; ++i) partial[3 * std::size_t(i)] = layerDamping_[lat_.ownBegin + i];
+    for (int i = 0; i < owned; ++i) {
+        const int m = lat_.ownBegin + i;
+        const double bars = sumOver(dampings_, [m](const auto& d) { return d.stepWork(m); });
+        partial[3 * std::size_t(i)] = bars != 0 ? layerDamping_[m] + bars : layerDamping_[m];
+    }
     addBySlot(partial, 3, 1, preSlot_, [&](std::size_t k) {
         const int d = pre_.dim[k];
         return -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;

@@ -123,7 +123,7 @@ public:
     const RunParams& runParams() const { return run_; }
     const Frequencies& frequencies() const { return freq_; }
     double dt() const { return dt_; }
-    double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max
+    double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max x the dampings' factor (zeta_high)
     double dampingCoefficient() const { return ldem::dampingCoefficient(dampings_); }
     double supportStress() const;  // reactions of the support group / area, state n [Pa]
     bool facesJoined() const;      // some chain of intact bars joins the support and loaded groups
@@ -155,13 +155,14 @@ private:
     // The layered pass with the law's rows and every damping's bar forces; afterLayer(m) as in layeredForces.
     template <class AfterLayer>
     void layered(AfterLayer afterLayer) {
-        std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, dampedRows(dampings_, law.rows()), afterLayer); },
+        std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, law.rows(), afterLayer, barPass(dampings_, v_)); },
                    law_);
     }
     // The record's events and stop (run()): the load-loss test, the drive, the stop rules.
     void recordParts(const CurvePoint& p);
     std::string stopReason(const CurvePoint& p) const;
     double advanceNodes(int layer);
+    double ownedLayerSum(const std::function<double(int)>& ofLayer) const;  // in layer order, over the ranks
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
     void finishStep();  // damping and external work, prescribed DOFs, clock

@@ -151,7 +151,7 @@ TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
     EXPECT_TRUE(LoadLossStop().state().empty());
     MassDamping::Params m;
     m.zeta = 0.02;
-    const Dampings d{MassDamping(m, 800.0)};
+    Dampings d{MassDamping(m, 800.0), BarDashpots()};
     EXPECT_TRUE(std::get<MassDamping>(d).state().empty());
     // Its node update is central differences with D_f = 2 zeta omega_1, bit for bit.
     const CentralDifference cd = nodeUpdate(d, kDt), want(kDt, 2 * 0.02 * 800.0);

@@ -7,9 +7,11 @@
 #pragma once
 #include <vector>
 
+#include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Parameters.hpp"
 #include "ldem/RunParams.hpp"
+#include "ldem/dynamics/Part.hpp"
 
 namespace ldem {
 
@@ -24,12 +26,16 @@ public:
     };
     MassDamping() = default;  // none: D_f = 0
     MassDamping(const Params& p, double omega1) : Df_(massDampingCoefficient(p.zeta, omega1)) {}
-    // Every damping is built from the run's parameters and omega_1 (Registry.hpp: makeDampings).
-    MassDamping(const RunParams& run, double omega1) : MassDamping(params(run), omega1) {}
+    // Every damping is built from the run's parameters and its set-up (Registry.hpp: makeDampings).
+    MassDamping(const RunParams& run, const DampingSetup& s) : MassDamping(params(run), s.omega1) {}
     double coefficient() const { return Df_; }  // D_f [1/s]
+    // Implicit in the node update (the mean of v(n-1/2) and v(n+1/2)): no bound on the time step.
+    double stepFactor() const { return 1.0; }
     CentralDifference nodeUpdate(const CentralDifference& cd) const { return CentralDifference(cd.dt, cd.Df + Df_); }
-    template <class Rows>
-    Rows barRows(Rows rows) const { return rows; }
+    DashpotPass barPass(const Field3&) const { return {}; }  // no bar forces
+    double stepWork(int) const { return 0.0; }
+    double closingWork(int) const { return 0.0; }
+    double openingWork(int) const { return 0.0; }
     std::vector<double> state() const { return {}; }
     void setState(const std::vector<double>&) {}
 

@@ -15,9 +15,12 @@
 // A stop rule (StopRules):
 //   void record(StopRecord&)        at each record, before the observer: its event in the summary
 //   const char* reason(point, summary) const   after the observer: its stop reason, or nullptr
-// A damping (Dampings, all of them applied in the registry's order), built from (RunParams, omega_1):
-//   CentralDifference nodeUpdate(CentralDifference) const   the node update with its terms (Integrator.hpp)
-//   Rows barRows(Rows) const         the force loop's row functor with its bar forces (laws/BarLaw.hpp)
+// A damping (Dampings, all of them applied in the registry's order), built from (RunParams, DampingSetup):
+//   double stepFactor() const        its share of the stable time step (1: none; dt <= factor x 2/omega_max)
+//   CentralDifference nodeUpdate(CentralDifference)   the node update with its terms (Integrator.hpp)
+//   DashpotPass barPass(const Field3& v)   its bar forces in the force pass (BarDashpot.hpp), or none
+//   double stepWork(int m) const     the work its bar forces of bar layer m dissipated in this step [J]
+//   double closingWork(int m), openingWork(int m) const   that work's two halves (BarDashpot.hpp)
 #pragma once
 #include <cstdint>
 #include <functional>
@@ -25,6 +28,13 @@
 #include "ldem/dynamics/Record.hpp"
 
 namespace ldem {
+
+// What a damping is built from, beyond its parameters.
+struct DampingSetup {
+    double omega1 = 0, omegaMax = 0;  // [rad/s]
+    std::int64_t bars = 0;            // of the lattice (its bar numbers)
+    int layers = 0;                   // bar layers
+};
 
 // A step of the drive: from state n (time t_n) to n+1.
 struct DriveStep {

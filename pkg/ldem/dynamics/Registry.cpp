@@ -15,13 +15,13 @@ namespace ldem {
 
 namespace {
 template <class... D>
-std::tuple<D...> makeEach(const std::tuple<D...>*, const RunParams& run, double omega1) {
-    return {D(run, omega1)...};
+std::tuple<D...> makeEach(const std::tuple<D...>*, const RunParams& run, const DampingSetup& s) {
+    return {D(run, s)...};
 }
 }  // namespace
 
-Dampings makeDampings(const RunParams& run, double omega1) {
-    return makeEach(static_cast<const Dampings*>(nullptr), run, omega1);
+Dampings makeDampings(const RunParams& run, const DampingSetup& s) {
+    return makeEach(static_cast<const Dampings*>(nullptr), run, s);
 }
 
 double dampingCoefficient(const Dampings& d) { return std::get<MassDamping>(d).coefficient(); }

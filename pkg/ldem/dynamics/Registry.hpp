@@ -5,8 +5,8 @@
 // A new part is a header (and .cpp) in this folder, its line below, its
 // parameters' list in Parameters.hpp and, for a drive or a stop, its choice's
 // name in that parameter's domain and its case in makeDrive / makeStops.
-// A new damping: its header (a constructor from the RunParams and omega_1), and
-// its type at the end of Dampings.
+// A new damping: its header (a constructor from the RunParams and DampingSetup,
+// the hooks of Part.hpp), and its type at the end of Dampings.
 #pragma once
 #include <cstddef>
 #include <string>
@@ -19,6 +19,7 @@
 #include "ldem/Material.hpp"
 #include "ldem/RunParams.hpp"
 #include "ldem/dynamics/AdaptiveDrive.hpp"
+#include "ldem/dynamics/BarDashpots.hpp"
 #include "ldem/dynamics/ConstantRateDrive.hpp"
 #include "ldem/dynamics/ConvergedStop.hpp"
 #include "ldem/dynamics/FinalStrainStop.hpp"
@@ -32,7 +33,7 @@ namespace ldem {
 
 using Drives = std::variant<ConstantRateDrive, AdaptiveTailDrive, ServoDrive>;
 using StopRules = std::variant<SeparationStop, LoadLossStop, ConvergedStop, FinalStrainStop>;
-using Dampings = std::tuple<MassDamping>;  // every one applied, in this order
+using Dampings = std::tuple<MassDamping, BarDashpots>;  // every one applied, in this order
 
 // What the parts are built from, beyond their parameters.
 struct DynamicsSetup {
@@ -44,7 +45,7 @@ struct DynamicsSetup {
     bool openingControl = false;  // the specimen has a controlled probe
 };
 
-Dampings makeDampings(const RunParams& run, double omega1);
+Dampings makeDampings(const RunParams& run, const DampingSetup& s);
 double dampingCoefficient(const Dampings& d);  // D_f of the mass-proportional damping [1/s]
 // The program of every drive (v0, the ramp, the speed-up), whatever the drive.
 ConstantRateDrive fixedDrive(const LoadingParams& load, const DynamicsSetup& s);
@@ -54,19 +55,32 @@ Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSet
 std::vector<StopRules> makeStops(const RunParams& run);
 
 // The node update with every damping's terms, from the undamped one.
-inline CentralDifference nodeUpdate(const Dampings& d, double dt) {
-    return std::apply([&](const auto&... damping) {
+inline CentralDifference nodeUpdate(Dampings& d, double dt) {
+    return std::apply([&](auto&... damping) {
         CentralDifference cd(dt, 0.0);
         ((cd = damping.nodeUpdate(cd)), ...);
         return cd;
     }, d);
 }
 
-// The law's row functor with every damping's bar forces.
-template <std::size_t I = 0, class Rows>
-auto dampedRows(const Dampings& d, Rows rows) {
-    if constexpr (I == std::tuple_size_v<Dampings>) return rows;
-    else return dampedRows<I + 1>(d, std::get<I>(d).barRows(rows));
+// The stable time step's factor of all the dampings together.
+inline double stepFactor(const Dampings& d) {
+    return std::apply([](const auto&... damping) { return (1.0 * ... * damping.stepFactor()); }, d);
+}
+
+// The bar forces of the damping that has them in the force pass (one at most), or none.
+inline DashpotPass barPass(Dampings& d, const Field3& v) {
+    return std::apply([&](auto&... damping) {
+        DashpotPass pass;
+        ((pass = pass.state ? pass : damping.barPass(v)), ...);
+        return pass;
+    }, d);
+}
+
+// f(damping) summed over the dampings (their layer works).
+template <class F>
+double sumOver(const Dampings& d, F f) {
+    return std::apply([&](const auto&... damping) { return (0.0 + ... + f(damping)); }, d);
 }
 
 // A part's name and state, for checkpoints: "drive_fixed", "stop_separation", "damping_mass", ...

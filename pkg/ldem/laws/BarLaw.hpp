@@ -24,7 +24,9 @@
 //       on bar p's A node as if the bar were elastic, and returns a number > 0
 //       if it may not be (the row then goes through the law);
 //   rowLaw(p, EA, s, gx, gy, gz)   the law with damage, from the bar's stretch s
-//       (a SeriesStretch or a BarStretch: strain() and elasticForcePerLength(EA)).
+//       (a SeriesStretch or a BarStretch: strain() and elasticForcePerLength(EA));
+//       returns the ratio r of the bar's dashpot (BarDashpot.hpp): its secant
+//       ratio F/(EA eps) once it has left the elastic branch, else 0.
 // du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
 #pragma once
 #include <algorithm>

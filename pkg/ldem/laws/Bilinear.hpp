@@ -155,12 +155,14 @@ public:
             return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
         template <class Stretch>
-        void operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
+        double operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
             const double eps = s.strain();
             const double k = bilinear::updateDamage(kappa[p], eps);
             kappa[p] = k > epsP ? k : kappa[p];
-            const double Fl = s.elasticForcePerLength(EA) * bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
+            const double r = bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
+            const double Fl = s.elasticForcePerLength(EA) * r;
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
+            return k > epsP ? r : 0.0;  // its dashpot's ratio (BarDashpot.hpp)
         }
     };
     Rows rows() { return {kappa.data(), epsK.data(), epsR.data(), epsP, sK, stretchOfStrain(epsP), softening.data()}; }

@@ -146,12 +146,14 @@ public:
             return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
         }
         template <class Stretch>
-        void operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
+        double operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
             const double eps = s.strain();
             const double k = hillerborg::updateDamage(kappa[p], eps);
             kappa[p] = k > epsP ? k : kappa[p];
-            const double Fl = s.elasticForcePerLength(EA) * hillerborg::forceRatio(eps, k, epsP, epsR[p]);
+            const double r = hillerborg::forceRatio(eps, k, epsP, epsR[p]);
+            const double Fl = s.elasticForcePerLength(EA) * r;
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
+            return k > epsP ? r : 0.0;  // its dashpot's ratio (BarDashpot.hpp)
         }
     };
     Rows rows() { return {kappa.data(), epsR.data(), epsP, stretchOfStrain(epsP), softening.data()}; }

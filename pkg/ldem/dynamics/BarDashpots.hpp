@@ -1,0 +1,91 @@
+// Dashpots in the bars that have left their elastic branch: numerical
+// damping of the modes that clap across closing cracks (issue 41), not a part
+// of the model's physics (that is MassDamping.hpp, the seed's ratio zeta).
+// Parameters: LDEM_BAR_DASHPOT_PARAMETERS (zeta_high).
+//
+// Why: a broken bar carries no tension and its full stiffness in compression.
+// Where a crack's faces touch, the lattice switches between two stiffnesses
+// from step to step, and near the stability limit the explicit scheme pumps
+// energy into its highest modes through that switching: the 0.48 m cube on
+// rollers at 0.9 of the limit ends with an energy balance error of 0.78 by a
+// mean strain of 1e-3, and 2.3 times the fracture energy at its load loss of
+// the same cube at 0.4. A dashpot beside every bar that has left its elastic
+// branch takes that energy out where it is made (its force and work:
+// BarDashpot.hpp):
+//   F_d = beta (EA/L) r de/dt,   beta = 2 zeta_high / omega_max,
+// r the law's secant ratio (0 for a broken bar in tension: no dashpot across
+// an open crack; 1 in compression). Were every bar to carry one, this would be
+// stiffness-proportional damping C = beta K, whose ratio in mode i is
+//   zeta_i = beta omega_i / 2 = zeta_high omega_i / omega_max:
+// zeta_high on the highest mode, zeta_high omega_1/omega_max on the
+// fundamental (0.1 x 1/600 on the 0.12 m cube: far below the seed's 0.02).
+// Elastic bars have none: the cost stays in the bars that crack.
+//
+// The time step: the dashpot acts with v(n-1/2), explicitly. For one mode,
+//   x(n+1) - 2x(n) + x(n-1) = -h^2 x(n) - 2 zeta h (x(n) - x(n-1)),  h = omega dt,
+// is stable iff h^2 + 4 zeta h <= 4 (Jury's conditions on its characteristic
+// polynomial), i.e.
+//   dt <= (2/omega) (sqrt(1 + zeta^2) - zeta);
+// in matrix form M - (dt^2/4) K - (dt/2) C >= 0, which holds as well for
+// C <= beta K, dashpots on some bars only.
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "ldem/BarDashpot.hpp"
+#include "ldem/Integrator.hpp"
+#include "ldem/Parameters.hpp"
+#include "ldem/RunParams.hpp"
+#include "ldem/dynamics/Part.hpp"
+
+namespace ldem {
+
+// beta [s]: dashpot over stiffness for the ratio zeta_high at omega_max.
+inline double dashpotBeta(double zetaHigh, double omegaMax) { return 2.0 * zetaHigh / omegaMax; }
+
+// The stability limit of central differences with an explicit damping ratio
+// zeta on the highest mode, as a fraction of the undamped 2/omega_max.
+inline double dampedStepFactor(double zeta) { return std::sqrt(1.0 + zeta * zeta) - zeta; }
+
+class BarDashpots {
+public:
+    static constexpr const char* name = "bar_dashpots";
+    struct Params {
+        LDEM_BAR_DASHPOT_PARAMETERS(LDEM_DECLARE_MEMBER)
+    };
+    BarDashpots() = default;  // none
+    BarDashpots(const Params& p, const DampingSetup& s) : zeta_(p.zetaHigh) {
+        d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
+        if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
+    }
+    BarDashpots(const RunParams& run, const DampingSetup& s) : BarDashpots(params(run), s) {}
+    bool on() const { return d_.beta > 0; }
+    double beta() const { return d_.beta; }  // [s]
+    double stepFactor() const { return dampedStepFactor(zeta_); }
+    CentralDifference nodeUpdate(const CentralDifference& cd) {
+        d_.halfDt = 0.5 * cd.dt;
+        return cd;
+    }
+    DashpotPass barPass(const Field3& v) { return on() ? DashpotPass{&d_, &v} : DashpotPass{}; }
+    // The work of bar layer m's dashpots in this step, whole (closing + opening), and its parts [J].
+    double stepWork(int m) const { return on() ? d_.closing[m] + d_.opening[m] : 0.0; }
+    double closingWork(int m) const { return on() ? d_.closing[m] : 0.0; }
+    double openingWork(int m) const { return on() ? d_.opening[m] : 0.0; }
+    std::vector<double> state() const { return d_.force; }
+    void setState(const std::vector<double>& s) {
+        if (s.size() != d_.force.size()) throw std::invalid_argument("the checkpoint's bar dashpots are of another run (zeta_high)");
+        d_.force = s;
+    }
+
+private:
+    static Params params(const RunParams& from) {
+        Params to;
+        LDEM_BAR_DASHPOT_PARAMETERS(LDEM_COPY_MEMBER)
+        return to;
+    }
+    double zeta_ = 0;
+    DashpotState d_;
+};
+
+}  // namespace ldem
