@@ -31,6 +31,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <vector>
 
 #include "ldem/BarDashpot.hpp"
@@ -72,10 +73,21 @@ public:
     double stepWork(int m) const { return on() ? d_.closing[m] + d_.opening[m] : 0.0; }
     double closingWork(int m) const { return on() ? d_.closing[m] : 0.0; }
     double openingWork(int m) const { return on() ? d_.opening[m] : 0.0; }
-    std::vector<double> state() const { return d_.force; }
+    // Each bar's last force, then the current step's work sums of each bar layer
+    // (a checkpoint is taken between a record's forces and the rest of its step).
+    std::vector<double> state() const {
+        std::vector<double> s = d_.force;
+        s.insert(s.end(), d_.closing.begin(), d_.closing.end());
+        s.insert(s.end(), d_.opening.begin(), d_.opening.end());
+        return s;
+    }
     void setState(const std::vector<double>& s) {
-        if (s.size() != d_.force.size()) throw std::invalid_argument("the checkpoint's bar dashpots are of another run (zeta_high)");
-        d_.force = s;
+        const std::size_t bars = d_.force.size(), layers = d_.closing.size();
+        if (s.size() != bars + 2 * layers)
+            throw std::invalid_argument("the checkpoint's bar dashpots are of another run (zeta_high)");
+        d_.force.assign(s.begin(), s.begin() + bars);
+        d_.closing.assign(s.begin() + bars, s.begin() + bars + layers);
+        d_.opening.assign(s.begin() + bars + layers, s.end());
     }
 
 private:
