@@ -76,6 +76,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
+    loadedSlot_ = ownedLayerSlots(lat_, *loaded_);
     cd_ = nodeUpdate(dampings_, dt_);
     layerDamping_.assign(lat_.numLayers(), 0.0);
 }
@@ -181,8 +182,11 @@ CurvePoint Simulation::measure() const {
     p.step = step_;
     p.time = time_;
     p.meanStrain = meanStrainOf(driveNow());
-    p.stress = supportStress();
-    p.stressLoaded = (0.0 - meas_.sense() * groupForce(*loaded_)) / meas_.area;  // 0 - x: +0, never -0, when x is 0
+    // The mean over the states since the last record and this one: the impulse
+    // through each group over the record interval, over the interval (a load
+    // cell's reading), never one step's sample (the top of the ringing).
+    p.stress = (cellSupport_ + supportStress()) / (cellStates_ + 1);
+    p.stressLoaded = (cellLoaded_ + (0.0 - meas_.sense() * groupForce(*loaded_)) / meas_.area) / (cellStates_ + 1);
     for (const Probe& q : meas_.probes) p.probes.push_back(probe(q));
     const BarEnergies e = barEnergies(lat_, u_, law_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
@@ -223,22 +227,29 @@ void Simulation::finishStep() {
     // any number of threads and ranks (Slab.hpp).
     const int owned = lat_.ownEnd - lat_.ownBegin;
     std::vector<double>& partial = stepPartials_;
-    partial.assign(3 * std::size_t(owned), 0.0);
+    partial.assign(4 * std::size_t(owned), 0.0);
     for (int i = 0; i < owned; ++i) {
         const int m = lat_.ownBegin + i;
         const double bars = sumOver(dampings_, [m](const auto& d) { return d.stepWork(m); });
-        partial[3 * std::size_t(i)] = bars != 0 ? layerDamping_[m] + bars : layerDamping_[m];
+        partial[4 * std::size_t(i)] = bars != 0 ? layerDamping_[m] + bars : layerDamping_[m];
     }
-    addBySlot(partial, 3, 1, preSlot_, [&](std::size_t k) {
+    addBySlot(partial, 4, 1, preSlot_, [&](std::size_t k) {
         const int d = pre_.dim[k];
         return -(d == 0 ? f_.x : d == 1 ? f_.y : f_.z)[pre_.node[k]] * pre_.weight[k] * centred;
     });
     const std::vector<double>& fm = meas_.dim == 0 ? f_.x : meas_.dim == 1 ? f_.y : f_.z;
-    addBySlot(partial, 3, 2, supportSlot_, [&](std::size_t k) { return fm[(*support_)[k]]; });
-    const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 3);
+    addBySlot(partial, 4, 2, supportSlot_, [&](std::size_t k) { return fm[(*support_)[k]]; });
+    addBySlot(partial, 4, 3, loadedSlot_, [&](std::size_t k) { return fm[(*loaded_)[k]]; });
+    const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 4);
     dampingWork_ += sums[0];
     externalWork_ += sums[1];
     stressBefore_ = (0.0 + meas_.sense() * sums[2]) / meas_.area;  // = supportStress() of state n, bit for bit
+    if (step_ % recordEvery_ == 0) {  // the record's state n was its interval's last: a new interval
+        cellSupport_ = cellLoaded_ = 0, cellStates_ = 0;
+    } else {
+        cellSupport_ += stressBefore_, cellLoaded_ += (0.0 - meas_.sense() * sums[3]) / meas_.area;
+        ++cellStates_;
+    }
     for (std::size_t k = 0; k < pre_.node.size(); ++k) {
         const auto n = pre_.node[k];
         const int d = pre_.dim[k];
@@ -357,7 +368,8 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
     }
     RunSummary& s = g.summary;
-    // The peak, at every step: the stress of state n is known once its forces are.
+    // The peak: the largest record, a load cell's mean over its interval
+    // (measure()), at the drive's displacement at the record.
     auto trackPeak = [&](double stress, double U) {
         if (stress <= s.peakStress) return;
         s.peakStress = stress;
@@ -371,13 +383,12 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
-            trackPeak(stressBefore_, driveBefore());
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.
         computeForces();
-        trackPeak(supportStress(), driveNow());
         const CurvePoint p = measure();
+        trackPeak(p.stress, driveNow());
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the
         // integration is unstable; stop before it writes garbage.

@@ -189,10 +189,14 @@ private:
     double dt_ = 0, time_ = 0, splitWindow_ = 0;
     CentralDifference cd_{0, 0};
     std::vector<double> layerDamping_;  // damping work of each node layer in the current step
-    std::vector<std::int32_t> preSlot_, supportSlot_;  // owned layer (- ownBegin) of each prescribed DOF's node, support node; -1 if not owned
+    std::vector<std::int32_t> preSlot_, supportSlot_, loadedSlot_;  // owned layer (- ownBegin) of each prescribed DOF's node, support and loaded node; -1 if not owned
     std::vector<double> stepPartials_;  // finishStep's per-layer sums, kept between steps
     double externalWork_ = 0, dampingWork_ = 0;
     double stressBefore_ = 0;  // supportStress() of the state the last step started from
+    // The load cells: sums of the support's and the loaded group's stresses over
+    // the states since the last record, and how many (measure()).
+    double cellSupport_ = 0, cellLoaded_ = 0;
+    int cellStates_ = 0;
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
     int recordEvery_ = 1;
     RunProgress progress_;

@@ -12,6 +12,8 @@ struct CurvePoint {
     std::int64_t step = 0;
     double time = 0;          // [s]
     double meanStrain = 0;    // the loaded group's mean drive displacement / gauge length (the cube's height)
+    // What a load cell reads: the impulse over the record interval / its length,
+    // the mean of the states since the last record (Simulation::measure).
     double stress = 0;        // reactions of the support group along the measured direction / area [Pa]
     double stressLoaded = 0;  // the same on the loaded group, negated [Pa]
     std::vector<double> probes;  // the specimen's Measures::probes [m]
