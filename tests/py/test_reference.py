@@ -367,7 +367,8 @@ def test_frequencies_time_step_damping(dims, load, top_free, zeta):
     w1, wmax = R.frequencies(p.lat, R.Boundary(p.lat, load, top_free))
     assert s.omega1 == pytest.approx(w1, rel=1e-10)
     assert s.omega_max == pytest.approx(wmax, rel=1e-10)
-    assert s.dt_limit == pytest.approx(0.4 * 2 / wmax, rel=1e-10)    # README: dt_safety 0.4 of 2/omega_max
+    factor = math.sqrt(1 + 0.1 ** 2) - 0.1                             # README: the dashpots' zeta_high 0.1
+    assert s.dt_limit == pytest.approx(0.8 * 2 / wmax * factor, rel=1e-10)    # README: dt_safety 0.8
     assert s.dt == s.dt_limit
     assert s.damping_coefficient == pytest.approx(2 * zeta * w1, rel=1e-10)   # D_f = 2 zeta omega_1
     assert s.ramp_time == pytest.approx(2 * 2 * math.pi / w1, rel=1e-10)     # README: two fundamental periods
