@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "ldem/Integrator.hpp"
+#include "ldem/Interrupt.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
@@ -28,7 +29,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     validate(specimen);
     if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
         throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
-    setThreads(run_.threads);
+    threads_ = threadsFor(run_.threads, specimen.lattice.numBars(), Comm::world().size());
+    setThreads(threads_);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
     meas_ = specimen.measures;
@@ -311,7 +313,7 @@ bool EnergyConvergence::update(double meanStrain, double fracture, bool loadLost
 }
 
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
-    setThreads(run_.threads);
+    setThreads(threads_);
     RunProgress& g = progress_;
     if (!g.started) {
         g = RunProgress();
@@ -334,10 +336,12 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         g.pendingAdvance = false;
         advance();
     }
+    InterruptCheck interruptPoint;
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
             trackPeak(stressBefore_, driveBefore());
+            interruptPoint();  // a signal may stop here, between records (a checkpoint needs a record)
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.

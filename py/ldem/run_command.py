@@ -62,7 +62,9 @@ def cmd_cube(args) -> int:
         raise ValueError("--extend goes with --restart DIR: the finished run to take further")
     test = cube_from_args(args)
     test.params()  # every input checked before the warnings below and before any output
-    cores = os.cpu_count() or 1
+    from ._core import allowed_cores
+
+    cores = allowed_cores()
     if test.threads > cores:
         print(f"ldem cube: warning: --threads {test.threads} is more than the {cores} cores: using {cores}",
               file=sys.stderr)
@@ -208,6 +210,28 @@ def _output_options(p: argparse.ArgumentParser) -> None:
     add_output_flags(p)
 
 
+def what_is_kept(args) -> str:
+    """What an interrupted command left, read from its files: the message says
+    only what is true (ldem cube and run: the curve's rows, the checkpoint's
+    step; a study: its finished cases)."""
+    out = getattr(args, "out", None)
+    if args.command not in ("cube", "run"):
+        return f"finished cases are kept in {out}; the same command continues the others" if out else "nothing kept"
+    try:
+        with open(os.path.join(out, "curve.csv")) as f:
+            rows = f.read().splitlines()[1:]
+    except OSError:
+        rows = []
+    kept = f"curve.csv keeps {len(rows)} row{'s' * (len(rows) != 1)}, to step {rows[-1].split(',')[0]}" if rows else \
+        "nothing ran: curve.csv has no rows"
+    from .io import saved_step
+
+    try:
+        return f"{kept}; checkpoint.npz is of step {saved_step(out)}"
+    except (OSError, ValueError, KeyError, EOFError):
+        return kept + "; no checkpoint: it would run again from the start"
+
+
 def how_to_continue(args) -> str:
     out = getattr(args, "out", None)
     if not out or not os.path.exists(os.path.join(out, "checkpoint.npz")):
@@ -215,7 +239,6 @@ def how_to_continue(args) -> str:
     if args.command == "cube":
         return f"; continue with: ldem cube --restart {out}"
     return f"; continue with: ldem run {args.file} --out {out} --restart" + "".join(f" --set {s}" for s in args.set)
-
 
 
 
