@@ -154,9 +154,10 @@ def report_run(result, args, edge: bool = False) -> int:
         stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
         print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
               f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
-    ranks = f" on {s['mpi_ranks']} MPI ranks" if s.get("mpi_ranks", 1) > 1 else ""
+    threads = f"{s['threads']} thread{'s' * (s['threads'] != 1)}"  # the run's (threads = 0: chosen, Parallel.hpp)
+    where = f"{s['mpi_ranks']} MPI ranks of {threads}" if s.get("mpi_ranks", 1) > 1 else threads
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
-          f"{s['wall_s']:.1f} s wall{ranks}")
+          f"{s['wall_s']:.1f} s wall on {where}")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
     if (q := s["quasi_static"])["flagged"]:
