@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include "ldem/Interrupt.hpp"
+
 #include <sstream>
 
 #include <algorithm>
@@ -197,7 +199,8 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
     nz = lat.nz;  // from here on, the box
     lat.mass.assign(expectedNodeCount(nx, ny, nz), 0.0);
     const double moduleMass = m.rho * L0 * L0 * L0;
-    for (int k = 0; k < nz; ++k)
+    InterruptCheck heardInMasses;
+    for (int k = 0; k < nz; ++k, heardInMasses())
         for (int j = 0; j < ny; ++j)
             for (int i = 0; i < nx; ++i) {
                 if (!lat.present(i, j, k)) continue;
@@ -260,7 +263,9 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
     int currentLayer = -1;
     lat.barLayerStart.assign(lat.numLayers() + 1, 0);
     std::vector<double> shares;
+    InterruptCheck heardInRows;
     for (const auto& [layer, f, q, r] : rows) {
+        heardInRows();
         const BarFamily& fam = lat.families[f];
         if (layer != currentLayer) currentLayer = layer, layerFirst = next;
         shares.resize(fam.box[0]);
@@ -291,7 +296,9 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
     // order: one incidence per segment, and a node lies in at most one
     // segment of a row, so its summation order does not depend on the mask.
     lat.nodeLayerStart.assign(lat.numLayers() + 1, 0);
+    InterruptCheck heardInNodeRows;
     for (int m = 0; m < lat.numLayers(); ++m) {
+        heardInNodeRows();
         const NodeKind kind = m % 2 ? NodeKind::Centre : NodeKind::Corner;
         const int k = m / 2, cx = kind == NodeKind::Corner ? nx + 1 : nx, cy = kind == NodeKind::Corner ? ny + 1 : ny;
         for (int j = 0; j < cy; ++j) {

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "ldem/InternalForces.hpp"
+#include "ldem/Interrupt.hpp"
 #include "ldem/Slab.hpp"
 #include "ldem/RandomField.hpp"
 
@@ -107,7 +108,9 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
     double betaPrev = 0;
     int nextCheck = 10;
     Frequencies out;
+    InterruptCheck interruptPoint;
     for (int it = 1; it <= maxIterations; ++it) {
+        interruptPoint();
         // w = S K S q - beta_{j-1} q_{j-1}
 #pragma omp parallel for schedule(static)
         for (std::int64_t i = 0; i < n; ++i)

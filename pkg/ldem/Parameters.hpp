@@ -149,7 +149,9 @@
       "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")            \
     X(int, recordEvery, "record_every", 0, "steps", Domain::atLeast(0),                                      \
       "steps between curve rows (0: one per eps_p/50 of mean strain at the initial rate)")                   \
-    X(int, threads, "threads", 0, "", Domain::atLeast(0), "OpenMP threads (0: OMP_NUM_THREADS if set, else all cores)")
+    X(int, threads, "threads", 0, "", Domain::atLeast(0),                                                   \
+      "OpenMP threads (0: OMP_NUM_THREADS if set, else one per 50,000 bars of the lattice, at most the cores " \
+      "free to this process: those it may run on less those busy over 0.1 s; at least one)")
 
 // A struct member with its default.
 #define LDEM_DECLARE_MEMBER(type, member, name, def, unit, domain, help) type member = def;

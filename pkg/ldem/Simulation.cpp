@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "ldem/Integrator.hpp"
+#include "ldem/Interrupt.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
@@ -20,7 +21,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     validate(specimen);
     if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
         throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
-    setThreads(run_.threads);
+    threads_ = threadsFor(run_.threads, specimen.lattice.numBars(), Comm::world().size());
+    setThreads(threads_);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
     meas_ = specimen.measures;
@@ -357,7 +359,7 @@ std::string Simulation::stopReason(const CurvePoint& p) const {
 }
 
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
-    setThreads(run_.threads);
+    setThreads(threads_);
     RunProgress& g = progress_;
     if (!g.started) {
         refuseDriveJump(load_.strainRate, dt_, mat_.epsP);
@@ -380,9 +382,11 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         g.pendingAdvance = false;
         advance();
     }
+    InterruptCheck interruptPoint;
     for (;;) {
         if (step_ % recordEvery_ != 0) {
             step();
+            interruptPoint();  // a signal may stop here, between records (a checkpoint needs a record)
             continue;
         }
         // A record step: forces, measure state n, then the rest of the step.

@@ -140,6 +140,7 @@ public:
     std::int64_t totalNodes() const { return totalNodes_; }
     std::int64_t stepCount() const { return step_; }
     int recordEvery() const { return recordEvery_; }
+    int threads() const { return threads_; }  // OpenMP threads of the run (threadsFor, Parallel.hpp)
     double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
 
 private:
@@ -199,6 +200,7 @@ private:
     int cellStates_ = 0;
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
     int recordEvery_ = 1;
+    int threads_ = 1;
     RunProgress progress_;
 };
 

@@ -22,6 +22,8 @@
 #include <variant>
 #include <vector>
 
+#include <unistd.h>
+
 #include "ldem/Comm.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/Simulation.hpp"
@@ -107,6 +109,11 @@ std::vector<std::uint8_t> cylinderMask(int n) {
 static int bench(int argc, char** argv, int& modules);
 
 int main(int argc, char** argv) {
+    // Idle OpenMP threads sleep rather than spin, as under `ldem` (py/ldem/__init__.py
+    // says why); the runtime reads OMP_WAIT_POLICY as the program loads, before
+    // main: the program starts again with it set. A user's own setting stands.
+    if (!std::getenv("OMP_WAIT_POLICY") && setenv("OMP_WAIT_POLICY", "passive", 1) == 0)
+        execv("/proc/self/exe", argv);  // returns only if it failed: then as it is
     int modules = 0;
     try {
         return bench(argc, argv, modules);
@@ -199,7 +206,7 @@ static int bench(int argc, char** argv, int& modules) {
             "\"ranks\": %d, \"threads\": %d, \"ns_per_bar_step\": %.4f, \"ns_per_bar_forces\": %.4f, "
             "\"ns_per_bar_integration\": %.4f, \"separation_check_share\": %.4f, \"setup_s\": %.3f, "
             "\"peak_rss_bytes\": %.0f, \"bytes_per_bar\": %.2f, \"bytes_sent_per_rank_step\": %.0f%s}\n",
-            shape.c_str(), modules, (long long)bars, (long long)nodes, steps, repeats, comm.size(), ldem::maxThreads(),
+            shape.c_str(), modules, (long long)bars, (long long)nodes, steps, repeats, comm.size(), sim.threads(),
             step / bars * 1e9, force / bars * 1e9, adv / bars * 1e9,
             sep / (ldem::Simulation::kSeparationCheckSteps * step), setup, rss, rss * comm.size() / bars, sent,
             damagedFields.c_str());

@@ -12,7 +12,8 @@ import sys
 from .bench import cmd_bench
 from .rerun import RERUN_KEYS, cmd_rerun  # noqa: F401 (RERUN_KEYS: what a rerun compares)
 from .helptext import HelpFormatter
-from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue
+from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
+from .signals import Terminated, terminate_on_sigterm
 
 
 class _Parser(argparse.ArgumentParser):
@@ -62,19 +63,11 @@ def build_parser() -> argparse.ArgumentParser:
     return p
 
 
-class Terminated(KeyboardInterrupt):
-    """SIGTERM, handled as Ctrl-C: the run stops at its next record, its summary says interrupted."""
-
-
-def _terminate(signum, frame):
-    raise Terminated()
-
-
 def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     from . import _core
 
-    signal.signal(signal.SIGTERM, _terminate)
+    terminate_on_sigterm()
     # Under mpirun, rank 0 speaks for all (read from mpirun's environment: MPI
     # itself starts only when a lattice is split, so `ldem bench` leaves it to ldem-bench).
     rank = int(os.environ.get("OMPI_COMM_WORLD_RANK") or os.environ.get("PMIX_RANK") or 0)
@@ -96,7 +89,7 @@ def main(argv=None) -> int:
         return EXIT_FAILED
     except KeyboardInterrupt as e:
         how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
-        print(f"ldem {args.command}: {how} (rows so far are kept in the output folder){how_to_continue(args)}",
+        print(f"ldem {args.command}: {how}: {what_is_kept(args)}{how_to_continue(args)}",
               file=sys.stderr)
         return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)
 

@@ -246,7 +246,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "damping_coefficient_1_s": sim.damping_coefficient,
         "ramp_time_s": sim.ramp_time,
         "split_window_s": sim.split_window,
-        "threads": _core.max_threads(),  # those the run used: at most the cores (Parallel.hpp)
+        "threads": sim.threads,  # those the run used (threadsFor, Parallel.hpp)
         "mpi_ranks": _core.mpi_ranks(),  # processes the lattice was split over (mpirun -np)
         "wall_s": wall_s,
         "provenance": provenance(),

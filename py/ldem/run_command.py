@@ -62,7 +62,9 @@ def cmd_cube(args) -> int:
         raise ValueError("--extend goes with --restart DIR: the finished run to take further")
     test = cube_from_args(args)
     test.params()  # every input checked before the warnings below and before any output
-    cores = os.cpu_count() or 1
+    from ._core import allowed_cores
+
+    cores = allowed_cores()
     if test.threads > cores:
         print(f"ldem cube: warning: --threads {test.threads} is more than the {cores} cores: using {cores}",
               file=sys.stderr)
@@ -152,9 +154,10 @@ def report_run(result, args, edge: bool = False) -> int:
         stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
         print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
               f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
-    ranks = f" on {s['mpi_ranks']} MPI ranks" if s.get("mpi_ranks", 1) > 1 else ""
+    threads = f"{s['threads']} thread{'s' * (s['threads'] != 1)}"  # the run's (threads = 0: chosen, Parallel.hpp)
+    where = f"{s['mpi_ranks']} MPI ranks of {threads}" if s.get("mpi_ranks", 1) > 1 else threads
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
-          f"{s['wall_s']:.1f} s wall{ranks}")
+          f"{s['wall_s']:.1f} s wall on {where}")
     if s["clamped_bars"]:
         print(f"{s['clamped_bars']} of {s['n_bars']} bars had eps_r < eps_p and were made perfectly brittle")
     if (q := s["quasi_static"])["flagged"]:
@@ -208,6 +211,28 @@ def _output_options(p: argparse.ArgumentParser) -> None:
     add_output_flags(p)
 
 
+def what_is_kept(args) -> str:
+    """What an interrupted command left, read from its files: the message says
+    only what is true (ldem cube and run: the curve's rows, the checkpoint's
+    step; a study: its finished cases)."""
+    out = getattr(args, "out", None)
+    if args.command not in ("cube", "run"):
+        return f"finished cases are kept in {out}; the same command continues the others" if out else "nothing kept"
+    try:
+        with open(os.path.join(out, "curve.csv")) as f:
+            rows = f.read().splitlines()[1:]
+    except OSError:
+        rows = []
+    kept = f"curve.csv keeps {len(rows)} row{'s' * (len(rows) != 1)}, to step {rows[-1].split(',')[0]}" if rows else \
+        "nothing ran: curve.csv has no rows"
+    from .io import saved_step
+
+    try:
+        return f"{kept}; checkpoint.npz is of step {saved_step(out)}"
+    except (OSError, ValueError, KeyError, EOFError):
+        return kept + "; no checkpoint: it would run again from the start"
+
+
 def how_to_continue(args) -> str:
     out = getattr(args, "out", None)
     if not out or not os.path.exists(os.path.join(out, "checkpoint.npz")):
@@ -215,7 +240,6 @@ def how_to_continue(args) -> str:
     if args.command == "cube":
         return f"; continue with: ldem cube --restart {out}"
     return f"; continue with: ldem run {args.file} --out {out} --restart" + "".join(f" --set {s}" for s in args.set)
-
 
 
 

@@ -7,13 +7,12 @@ registry: this module knows no file name) and the progress bar (used by
 """
 from __future__ import annotations
 
-import signal
-import threading
 from typing import Optional, Sequence
 
 from . import io, parallel
 from .cube import CubeResult, CubeTest, refuse_drive_jump
 from .progress import ProgressBar
+from .signals import SignalsAtRecords
 
 
 def default_writers(plots: bool = True, checkpoints: bool = False, final_state: bool = False) -> list:
@@ -78,7 +77,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
                                                 checkpoint_every=checkpoint_every, title=title,
                                                 checkpoint_seconds=checkpoint_seconds, wall_before=wall_before))
     files = io.open_writers(names, run) if out is not None else []
-    held = SignalsAtRecords(next((w for w in files if isinstance(w, io.Checkpoints)), None))
+    held = SignalsAtRecords(next((w for w in files if isinstance(w, io.Checkpoints)), None), sim)
     everyone = [w for w in files if callable(w)] + [bar] + list(observers) + [held]
     try:
         with held:
@@ -113,44 +112,6 @@ def _set_up(test: CubeTest, out: Optional[str]):
             _tell(io.open_writers(["summary"], io.Run(test, None, out)), "failed",
                   {"status": "interrupted", "stop_reason": "interrupted", "error": "interrupted during set-up"})
         raise
-
-
-class SignalsAtRecords:
-    """SIGINT and SIGTERM during the loop, held to the end of the record being
-    observed (the last observer: every other one has seen it, curve.csv has
-    its row), then checkpoint.npz of that record and the signal's own handler
-    (KeyboardInterrupt, or ldem.cli's Terminated). A restart continues from
-    there bit for bit. The C++ loop hands back to Python only at records, so
-    holding costs no delay. Only Python handlers are held (not the defaults,
-    not off the main thread, where signals cannot be handled)."""
-
-    SIGNALS = (signal.SIGINT, signal.SIGTERM)
-
-    def __init__(self, saver=None):
-        self.saver, self.pending, self.previous = saver, None, {}
-
-    def __enter__(self):
-        if threading.current_thread() is threading.main_thread():
-            self.previous = {s: signal.getsignal(s) for s in self.SIGNALS if callable(signal.getsignal(s))}
-            for s in self.previous:
-                signal.signal(s, self._hold)
-        return self
-
-    def _hold(self, signum, frame):
-        self.pending = signum
-
-    def __call__(self, row: dict) -> None:
-        if self.pending is not None:
-            if self.saver is not None:
-                self.saver.write()
-            handler = self.previous.get(self.pending, signal.default_int_handler)
-            self.__exit__()
-            handler(self.pending, None)
-
-    def __exit__(self, *exc):
-        for s, handler in self.previous.items():
-            signal.signal(s, handler)
-        self.previous = {}
 
 
 def _tell(writers: Sequence, what: str, *args) -> None:

@@ -5,8 +5,10 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <thread>
 
 #include "ldem/Integrator.hpp"
+#include "ldem/Interrupt.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
@@ -104,6 +106,21 @@ PYBIND11_MODULE(_core, m) {
     m.doc() = "ldem C++ core: truss-like lattice DEM (Riera-Iturrioz) for brittle fracture";
 
     py::register_exception<InstabilityError>(m, "InstabilityError", PyExc_RuntimeError);
+
+    // Ctrl-C and SIGTERM heard inside the core's long loops (Interrupt.hpp):
+    // Python's handlers run under the GIL, and the exception one raises
+    // (KeyboardInterrupt, ldem.signals.Terminated) is thrown on through the
+    // loop. Only the main thread runs Python's handlers: elsewhere the poll
+    // takes no GIL.
+    static std::thread::id mainThread;
+    const py::module_ threading = py::module_::import("threading");
+    if (threading.attr("current_thread")().is(threading.attr("main_thread")()))
+        mainThread = std::this_thread::get_id();
+    setInterruptPoll([] {
+        if (std::this_thread::get_id() != mainThread) return;
+        py::gil_scoped_acquire gil;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    });
 
     // Under mpirun, MPI starts at the first use of the ranks (a cube's
     // Simulation: each rank builds and runs only its slab, pkg/ldem/Slab.hpp)
@@ -308,6 +325,10 @@ PYBIND11_MODULE(_core, m) {
         return py::make_tuple(w.shape, w.scale);
     });
     m.def("max_threads", &maxThreads);
+    m.def("default_thread_count", &defaultThreadCount, py::arg("bars"), py::arg("free_cores"), py::arg("processes") = 1,
+          "the default thread count's rule (threads = 0) for a lattice of `bars` bars on `free_cores` free cores");
+    m.def("allowed_cores", &allowedCores, "the cores this process may run on (affinity, cgroup quota)");
+    m.def("idle_cores", &idleCores, py::arg("seconds") = 0.1, "of the allowed cores, those idle over `seconds`");
 
     py::class_<Simulation> sim(m, "Simulation",
                            "a specimen and its run: Simulation(CubeTestParams) for a cube test, or "
@@ -417,6 +438,9 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("total_nodes", &Simulation::totalNodes, "nodes of the whole lattice (all MPI ranks)")
         .def_property_readonly("steps", &Simulation::stepCount)
         .def_property_readonly("record_every", &Simulation::recordEvery)
+        .def_property_readonly("threads", &Simulation::threads,
+                               "the OpenMP threads of the run: threads if set, else OMP_NUM_THREADS, else as many as "
+                               "the lattice can use and the machine has free (Parallel.hpp, threadsFor)")
         .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)
         .def_property_readonly("area", [](const Simulation& s) { return s.measures().area; },
                                "area the reactions are divided by [m^2]")

@@ -14,7 +14,7 @@ LAYERS = [
     {"ldem._core"},
     {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.yade"},  # specimen and run
     {"ldem.io", "ldem.slicing", "ldem.parallel", "ldem.progress", "ldem.plots", "ldem.report",  # writers (ldem.io.*),
-     "ldem.markdown", "ldem.helptext"},                                                    # pictures, reports
+     "ldem.markdown", "ldem.helptext", "ldem.signals"},                                    # pictures, reports, signals
     {"ldem.runner"},                                                   # a run wired to its files
     {"ldem.study"},                                                    # ldem.study.* included
     {"ldem.cli", "ldem.run_command", "ldem.rerun", "ldem.bench", "ldem.scene"},                     # the edges: command line, scene scripts

@@ -82,9 +82,11 @@ def test_help_says_what_each_new_bound_protects(cli):
 
 @pytest.mark.skipif((os.cpu_count() or 1) < 2, reason="needs 2 cores to tell 1 thread from all")
 def test_threads_0_honours_omp_num_threads(tmp_path):
-    """threads=0 (the default): OMP_NUM_THREADS=1 runs on one thread, not on all cores."""
+    """threads=0 (the default): OMP_NUM_THREADS=2 runs on two threads (at most
+    the cores), even a lattice too small for them; unset, the lattice's own
+    count: one thread for a small cube, whatever the cores."""
     runs = {}
-    for env in ("1", None):
+    for env in ("2", None):
         out = tmp_path / f"t{env}"
         extra = {} if env is None else {"OMP_NUM_THREADS": env}
         base = {k: v for k, v in subprocess_env(**extra).items() if env is not None or k != "OMP_NUM_THREADS"}
@@ -92,7 +94,7 @@ def test_threads_0_honours_omp_num_threads(tmp_path):
                             str(out)], capture_output=True, text=True, env=base, timeout=300)
         assert r.returncode == 0, r.stderr
         runs[env] = json.loads((out / "summary.json").read_text())["threads"]
-    assert runs == {"1": 1, None: os.cpu_count()}
+    assert runs == {"2": min(2, len(os.sched_getaffinity(0))), None: 1}
 
 
 def _small_cube_file(tmp_path, edit=lambda t: t):

@@ -118,11 +118,12 @@ def test_cube_exits_130_on_sigint_and_keeps_rows(tmp_path):
     finally:
         stop(proc)
     assert proc.returncode == 130, stderr
-    assert stderr.strip().splitlines()[-1] == \
-        f"ldem cube: interrupted (rows so far are kept in the output folder); continue with: ldem cube --restart {out}", \
-        stderr
     assert "Traceback" not in stderr
     _, rows = read_rows(out / "curve.csv")
+    # Held to the end of a record: the checkpoint is of the last row.
+    assert stderr.strip().splitlines()[-1] == \
+        f"ldem cube: interrupted: curve.csv keeps {len(rows)} rows, to step {int(rows[-1, 0])}; checkpoint.npz is " \
+        f"of step {int(rows[-1, 0])}; continue with: ldem cube --restart {out}", stderr
     assert len(rows) >= seen and np.all(np.diff(rows[:, 0]) == rows[1, 0] - rows[0, 0])
     s = json.loads((out / "summary.json").read_text())
     assert s["status"] == "interrupted" and s["steps"] >= rows[-1, 0] and rows[-1, -1] > 0  # bars broken
@@ -141,12 +142,12 @@ def test_sigterm_is_an_interruption_with_its_summary(tmp_path):
     finally:
         stop(proc)
     assert proc.returncode == 128 + signal.SIGTERM, stderr
-    assert stderr.strip().splitlines()[-1] == \
-        "ldem cube: terminated (SIGTERM) (rows so far are kept in the output folder); " \
-        f"continue with: ldem cube --restart {out}", stderr
     s = json.loads((out / "summary.json").read_text())
     assert s["status"] == "interrupted" and s["stop_reason"] == "interrupted"
     _, rows = read_rows(out / "curve.csv")
+    assert stderr.strip().splitlines()[-1] == \
+        f"ldem cube: terminated (SIGTERM): curve.csv keeps {len(rows)} rows, to step {int(rows[-1, 0])}; " \
+        f"checkpoint.npz is of step {int(rows[-1, 0])}; continue with: ldem cube --restart {out}", stderr
     assert s["steps"] >= rows[-1, 0] and len(rows) >= 150
 
 

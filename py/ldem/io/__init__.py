@@ -16,6 +16,6 @@ from .tables import (CurveCsv, cut_curve_after, read_curve, read_summary, read_t
                      write_table)
 from .vtk import (VTU_CELL_ARRAYS, VTU_POINT_ARRAYS, Snapshots, write_bars, write_pvd, write_pvtu,  # noqa: F401
                   write_vtu)
-from .checkpoints import (CHECKPOINT, FINAL_STATE, Checkpoints, case_checkpoint, discard_checkpoint,  # noqa: F401
-                          read_checkpoint, restore, write_checkpoint)
+from .checkpoints import (CHECKPOINT, FINAL_STATE, Checkpoints, case_checkpoint, saved_step,  # noqa: F401
+                          discard_checkpoint, read_checkpoint, restore, write_checkpoint)
 from .figures import read_slice, write_slice  # noqa: F401

@@ -43,6 +43,13 @@ def case_checkpoint(out: str) -> tuple:
     return read_checkpoint(os.path.join(out, CHECKPOINT))
 
 
+def saved_step(out: str) -> int:
+    """The step of out's checkpoint.npz, its counters alone read (a large state
+    is not loaded); OSError if there is none."""
+    with np.load(os.path.join(out, CHECKPOINT)) as z:
+        return int(z["counters"][0])
+
+
 def discard_checkpoint(out: str) -> None:
     """The run in out is done: its state is not needed any more."""
     with contextlib.suppress(FileNotFoundError):

@@ -4,11 +4,13 @@ from __future__ import annotations
 
 import contextlib
 import os
+import signal
 import socket
 from typing import Callable, List, Optional, Sequence
 
 from .. import io
 from ..progress import CaseProgress
+from ..signals import Terminated
 from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
 
 
@@ -114,15 +116,49 @@ def _run_in_processes(jobs, todo, args, finished):
     import multiprocessing
 
     # spawn, not fork: a forked OpenMP runtime can hang in the child.
-    with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn")) as pool:
-        futures = {pool.submit(run_case, t, d): i for i, (t, d) in zip(todo, args)}
+    with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
+                                initializer=_worker_signals) as pool:
+        futures = {pool.submit(_worker_case, t, d): i for i, (t, d) in zip(todo, args)}
         try:
             for fut in cf.as_completed(futures):
                 finished(futures[fut], fut.result())
-        except BaseException:
+        except BaseException as e:
             for fut in futures:
                 fut.cancel()
+            if isinstance(e, Terminated):  # the running cases stop too (Ctrl-C reaches them from the terminal)
+                for process in list((pool._processes or {}).values()):  # the pool's workers: no public handle
+                    if process.is_alive():
+                        process.terminate()
             raise
+
+
+_in_case = False  # a worker process's: whether it runs a case now
+
+
+def _worker_signals() -> None:
+    """A worker hears SIGTERM and SIGINT as `ldem` does (its case stops and
+    leaves its files: ldem.signals) or, between cases, ends at once."""
+    for s in (signal.SIGTERM, signal.SIGINT):
+        signal.signal(s, _worker_signal)
+
+
+def _worker_signal(signum, frame):
+    if not _in_case:
+        os._exit(128 + signum)
+    raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
+
+
+def _worker_case(test, case_dir) -> dict:
+    """run_case in a worker; stopped by a signal, the worker ends (its case
+    has written what it keeps) rather than take the next case."""
+    global _in_case
+    _in_case = True
+    try:
+        return run_case(test, case_dir)
+    except KeyboardInterrupt as e:
+        os._exit(128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT))
+    finally:
+        _in_case = False
 
 
 def _run_on_dask(address, todo, args, finished):
