@@ -65,6 +65,7 @@ def main(argv):
     rp = _core.RunParams()
     rp.seed = a.seed
     rp.zeta = 0.0  # no damping: YADE's damping is not ldem's
+    rp.zeta_high, rp.dt_safety = 0.0, 0.4  # nor are ldem's bar dashpots (and without them, 0.4 of the limit)
     rp.threads = 1  # small lattice; also keeps YADE's OpenMP at one thread
     rp.record_every = a.record_every
 

@@ -35,7 +35,7 @@ def parse(argv):
 
 def main(argv):
     a = parse(argv)
-    settings = {"zeta": 0.0, "threads": 1, "record_every": 1, "final_strain": a.final_strain,
+    settings = {"zeta": 0.0, "zeta_high": 0.0, "dt_safety": 0.4, "threads": 1, "record_every": 1, "final_strain": a.final_strain,
                 "strain_rate": a.strain_rate, "stop_at": "load_loss"}
     test = ldem.SpecimenTest.from_file(a.file, settings)
     t0 = time.time()

@@ -88,15 +88,18 @@ def test_observer_sees_every_record_and_can_stop():
     assert np.all(np.diff(seen) == sim.record_every)
 
 
-def test_peak_does_not_depend_on_record_spacing():
-    """The peak and its strain are tracked at every step, not read from the rows."""
+def test_the_peak_is_the_largest_load_cell_record():
+    """A record's stress is a load cell's, the mean over its interval's states: the
+    peak is the largest record, its strain that record's. Recorded every step it
+    is the largest single step; every 97 steps, the largest mean, no higher."""
     a = ldem.CubeTest(**FAST, record_every=1).run()
     b = ldem.CubeTest(**FAST, record_every=97).run()
     assert len(b.curve["step"]) < len(a.curve["step"]) / 50
-    assert b.peak_stress_MPa == pytest.approx(a.peak_stress_MPa, rel=1e-9, abs=0)
-    assert b.strain_at_peak == pytest.approx(a.strain_at_peak, rel=1e-9, abs=0)
-    # ...and with rows every step it is the largest row.
-    assert a.peak_stress_MPa == pytest.approx(a.curve["stress_MPa"].max(), rel=1e-12)
+    for r in (a, b):
+        top = int(np.argmax(r.curve["stress_MPa"]))
+        assert r.peak_stress_MPa == r.curve["stress_MPa"][top]
+        assert r.strain_at_peak == r.curve["mean_strain"][top]
+    assert 0.97 * a.peak_stress_MPa < b.peak_stress_MPa <= a.peak_stress_MPa  # FAST rings: 1.4 % measured
 
 
 @pytest.mark.parametrize("size,load,rate,seed", [(0.08, "uniform", 0.1, 3), (0.06, "triangular", 1.0, 3),
@@ -127,15 +130,19 @@ def test_run_that_does_not_separate_says_so():
 
 
 def test_undamped_cube_on_rollers_balances_energy_to_separation():
-    """No damping, lower face on rollers (the case that created energy at the
-    old time step: error 0.096 on the 0.24 m cube): balance within 1 % to separation.
+    """No mass damping, lower face on rollers (the case that created energy at
+    0.9 of the limit: error 0.096 on the 0.24 m cube): balance within 1 % to
+    separation, with the bar dashpots at zeta_high 0.3 at 0.8 of the limit
+    (measured 3.4e-3; at zeta_high 0.1 2.2e-2, and 1.2e-2 at 0.4 without
+    dashpots: README, the time step). Their work is then all the damping.
     Undamped, the adaptive drive stays fixed after the load loss: the same run."""
-    r = ldem.CubeTest(size=0.08, strain_rate=0.1, zeta=0.0, bottom_lateral="free", seed=1).run()
-    fixed = ldem.CubeTest(size=0.08, strain_rate=0.1, zeta=0.0, bottom_lateral="free", seed=1, tail_drive="fixed").run()
+    undamped = dict(size=0.08, strain_rate=0.1, zeta=0.0, zeta_high=0.3, bottom_lateral="free", seed=1)
+    r = ldem.CubeTest(**undamped).run()
+    fixed = ldem.CubeTest(**undamped, tail_drive="fixed").run()
     assert r.summary["steps"] == fixed.summary["steps"] and r.summary["U_num_J"] == fixed.summary["U_num_J"]
     assert r.summary["stop_reason"] == "separated"
     assert r.summary["energy_balance_error"] < 0.01
-    assert r.curve["damping_J"][-1] == 0.0
+    assert r.summary["damping_coefficient_1_s"] == 0.0 and r.curve["damping_J"][-1] > 0
 
 
 def test_fracture_energy_drawn_per_module_reaches_the_engine():
@@ -161,9 +168,16 @@ def test_curve_csv_columns_carry_their_physics(tmp_path):
     for c in ldem.CURVE_COLUMNS:
         np.testing.assert_allclose(csv[c], r.curve[c], rtol=1e-9, atol=0, err_msg=c)
     elastic = (csv["damaged_bars"] == 0) & (csv["mean_strain"] > 0.4 * r.sim.eps_p)
+    elastic[0] = False
     assert elastic.sum() >= 5
     size = r.test.size
-    work = 0.5 * csv["stress_MPa"][elastic] * 1e6 * csv["mean_strain"][elastic] * size ** 3
+    # A row's stress is a load cell's, the mean over the R states of its interval;
+    # its strain is the record's (the interval's last state). On the linear branch
+    # the state's stress is the mean's times eps / (the interval's mean strain).
+    eps, R = csv["mean_strain"], np.diff(csv["step"], prepend=0)
+    eps_mean = eps - (R - 1) / (2 * R) * np.diff(eps, prepend=0)
+    sigma = csv["stress_MPa"] * 1e6 * eps / np.where(eps_mean > 0, eps_mean, 1)
+    work = 0.5 * sigma[elastic] * eps[elastic] * size ** 3
     np.testing.assert_allclose(csv["elastic_J"][elastic], work, rtol=2e-3)  # measured: 2e-4 to 5e-4
     assert (csv["kinetic_J"][elastic] < 0.01 * csv["elastic_J"][elastic]).all()  # measured: below 0.002
     assert csv["step"][0] == 0 and csv["kinetic_J"][0] == 0 and csv["external_work_J"][0] == 0

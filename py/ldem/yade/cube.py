@@ -91,6 +91,7 @@ class SimulationSpecimen:
         self.guard = RuptureGuard(self.bars, self.states)
         self.curve = []  # (step, time, mean_strain, stress_support, stress_loaded, damaged, broken)
         self.peak_stress, self.strain_at_peak = 0.0, 0.0
+        self._cell_sum, self._cell_states = 0.0, 0  # ldem's load cell: the states since the last record
         self.stop_reason = ""
         self.final_strain, self.callback, self.stop_at = math.inf, None, "separation"
         self.load_loss = self.separation = None
@@ -137,11 +138,16 @@ class SimulationSpecimen:
         stress = sense * f_support / self.face_area
         damaged, broken = self.guard.counts()
         self.curve.append((O.iter, O.time, strain, stress, -sense * f_loaded / self.face_area, damaged, broken))
-        if stress > self.peak_stress:
-            self.peak_stress, self.strain_at_peak = stress, strain
+        self._cell_sum += stress
+        self._cell_states += 1
         keep = True if self.callback is None else self.callback(self.curve[-1]) is not False
         if O.iter % self.record_every == 0:  # ldem's record steps: its events and stops come only there
-            self._events(stress, broken)
+            # ldem's record is a load cell's: the mean over the states of its interval, and its peak the largest
+            cell = self._cell_sum / self._cell_states
+            self._cell_sum, self._cell_states = 0.0, 0
+            if cell > self.peak_stress:
+                self.peak_stress, self.strain_at_peak = cell, strain
+            self._events(cell, broken)
         if not self.stop_reason and not keep:
             self.stop_reason = "stopped"
         if self.stop_reason:
