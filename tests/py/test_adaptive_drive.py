@@ -33,7 +33,7 @@ def test_the_parameters_come_from_the_table_with_their_defaults(cli):
     assert table["tail_drive"]["default"] == "adaptive"
     assert table["tail_drive"]["choices"] == ["fixed", "adaptive"]
     for name, default in (("loss_speedup", 20.0), ("tail_max_speedup", 2000.0), ("tail_load", 0.005),
-                          ("tail_drag", 0.1), ("tail_step", 1.1)):
+                          ("tail_drag", 0.03), ("tail_step", 1.1)):
         assert table[name]["default"] == default, name
     assert ldem.CubeTest().tail_drive == "adaptive"
     r = cli("cube", "--help")
