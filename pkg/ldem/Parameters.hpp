@@ -61,19 +61,20 @@
 // The fixed speed-up after the load loss (dynamics/ConstantRateDrive.hpp; the adaptive drive's floor).
 #define LDEM_SPEEDUP_PARAMETERS(X)                                                                           \
     X(double, lossSpeedup, "loss_speedup", 20.0, "", Domain::atLeast(1),                                     \
-      "drive velocity factor once the load is lost; tail_drive adaptive: its floor, the factor it returns to "\
-      "while bars soften")
+      "drive velocity factor once the load is lost; tail_drive adaptive: the most its floor (the factor it "\
+      "returns to while bars soften) may be")
 
 // The adaptive tail (dynamics/AdaptiveDrive.hpp).
 #define LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                    \
     X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                            \
       "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")           \
     X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                          \
-      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at loss_speedup "\
-      "(the chains are taut); below, at most loss_speedup x tail_load / (support stress / peak)")            \
-    X(double, tailDrag, "tail_drag", 0.1, "", Domain::open(0, 1),                                            \
+      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at its floor "   \
+      "(the chains are taut); below, at most floor x tail_load / (support stress / peak)")                   \
+    X(double, tailDrag, "tail_drag", 0.03, "", Domain::open(0, 1),                                           \
       "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "\
-      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height")                    \
+      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height, at every instant "  \
+      "from the load loss on")                                                                               \
     X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                      \
       "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "  \
       "over the record's steps")

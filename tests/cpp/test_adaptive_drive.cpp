@@ -275,7 +275,7 @@ TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     ASSERT_TRUE(tail.active());
     const Checkpoint c = first.checkpoint();
     ASSERT_EQ(c.parts.front().first, "drive_adaptive");
-    ASSERT_EQ(c.parts.front().second.size(), 1 + tail.state().size());  // the fixed drive's, then the adaptive one's
+    ASSERT_EQ(c.parts.front().second.size(), 3 + tail.state().size());  // the ramp's start, floor and time, then the adaptive drive's
     Simulation second(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     second.restore(c);
     std::vector<CurvePoint> rest;

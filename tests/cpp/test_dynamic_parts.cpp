@@ -76,7 +76,7 @@ TEST(DynamicParts, TheFixedDriveRoundTripsItsSpeedupStart) {
 
 TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
     const AdaptiveTailDrive d(fixedDrive(), limits());
-    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 3);   // not started: the fixed drive's state only
+    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 3);   // not started: the ramp's state only
     driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 12);  // started: its U, factors, averages too
     AdaptiveTailDrive started(fixedDrive(), limits());
     RunSummary s;
@@ -87,7 +87,7 @@ TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
         started.record(DriveRecord{p, s, k == 4, kDt});
     }
     ASSERT_TRUE(started.adaptive().active());
-    EXPECT_EQ(started.state().size(), 9u);
+    EXPECT_EQ(started.state().size(), 11u);  // the ramp's start, floor and time, then the adaptive drive's 8
 }
 
 TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {

@@ -33,7 +33,7 @@ def test_the_parameters_come_from_the_table_with_their_defaults(cli):
     assert table["tail_drive"]["default"] == "adaptive"
     assert table["tail_drive"]["choices"] == ["fixed", "adaptive"]
     for name, default in (("loss_speedup", 20.0), ("tail_max_speedup", 2000.0), ("tail_load", 0.005),
-                          ("tail_drag", 0.1), ("tail_step", 1.1)):
+                          ("tail_drag", 0.03), ("tail_step", 1.1)):
         assert table[name]["default"] == default, name
     assert ldem.CubeTest().tail_drive == "adaptive"
     r = cli("cube", "--help")
@@ -67,9 +67,10 @@ def test_a_checkpoint_past_the_load_loss_restarts_on_the_same_bits(runs):
     first = test.simulation()
     first.run(lambda p: p.step < stop)
     state = first.checkpoint()
-    drive = np.asarray(state["part_drive_adaptive"])  # the fixed drive's speed-up start, then the adaptive drive's
-    assert drive.size == 9 and drive[1] == 1.0  # active, its state stored
-    assert drive[4] > 20.0 and drive[5] > 20.0  # S_0, S_1: faster than the fixed drive there
+    drive = np.asarray(state["part_drive_adaptive"])  # the ramp's start, floor and time, then the adaptive drive's
+    assert drive.size == 11 and drive[3] == 1.0  # active, its state stored
+    assert drive[1] == 20.0  # the floor: the bound leaves the 0.08 m cube the fixed drive's ramp
+    assert drive[6] > 20.0 and drive[7] > 20.0  # S_0, S_1: faster than the fixed drive there
     second = test.simulation()
     second.restore(state)
     rest = []

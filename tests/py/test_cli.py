@@ -256,7 +256,9 @@ def test_restart_continues_bit_for_bit(cli, tmp_path):
     assert r.returncode == 0, r.stderr
     assert not (tmp_path / "cut" / "checkpoint.npz").exists()  # finished: nothing a restart would run again
     whole, again = (json.loads((tmp_path / d / "summary.json").read_text()) for d in ("whole", "cut"))
-    assert again["status"] == "done" and again["separated"]
+    # At 25 times the study's rate the drag bound holds this cube's tail near the initial rate and it
+    # reaches the final strain unseparated (with tail_drag 0.1 it separated): either end restarts alike.
+    assert again["status"] == "done" and again["stop_reason"] == whole["stop_reason"]
     for k in RERUN_KEYS:
         assert again[k] == whole[k], k
     assert (tmp_path / "cut" / "curve.csv").read_bytes() == (tmp_path / "whole" / "curve.csv").read_bytes()

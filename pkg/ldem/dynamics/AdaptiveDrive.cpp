@@ -11,6 +11,20 @@ double AdaptiveDrive::target(const Limits& l, bool softening, double chainLoad) 
     return chainLoad > 0 ? std::clamp(l.floor * l.load / chainLoad, l.floor, l.ceiling) : l.ceiling;
 }
 
+double AdaptiveDrive::steadyBound(const Limits& l, double peakStress) {
+    if (!(l.column > 0 && l.dampingT > 0)) return std::numeric_limits<double>::infinity();
+    return l.drag * peakStress / (l.column * l.dampingT);  // column dampingT = rho H v0 D_f
+}
+
+AdaptiveDrive::Ramp AdaptiveDrive::rampAfterLoss(const Limits& l, double peakStress, double rampTime) {
+    constexpr double pi = 3.14159265358979323846;
+    const double Sd = steadyBound(l, peakStress), Sf = std::clamp(Sd / 2, 1.0, l.floor);
+    if (!std::isfinite(Sd) || !(Sf > 1)) return {Sf, rampTime};
+    // pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1))), D_f = dampingT / T; S_d >= 2 S_f > 2.
+    const double shortest = pi * (Sf - 1) * l.interval / (2 * l.dampingT * std::sqrt((Sd - Sf) * (Sd - 1)));
+    return {Sf, std::max(rampTime, shortest)};
+}
+
 double AdaptiveDrive::next(double s, bool softening, double chainLoad, double peakStress) const {
     double lo = s / lim_.step, hi = s * lim_.step;
     if (lim_.column > 0) {
@@ -41,24 +55,30 @@ void AdaptiveDrive::setState(const std::vector<double>& s) {
 }
 
 void AdaptiveTailDrive::record(const DriveRecord& r) {
-    fixed_.record(r);
     const CurvePoint& p = r.point;
-    if (!tail_.active() && r.summary.loadLoss.reached() && p.time >= program().speedupStart + program().rampTime)
+    if (r.lossNow) {
+        const AdaptiveDrive::Ramp ramp = AdaptiveDrive::rampAfterLoss(lim_, r.summary.peakStress, program().rampTime);
+        fixed_.speedUp(p.time, ramp.floor, ramp.time);
+    }
+    if (!tail_.active() && r.summary.loadLoss.reached() && p.time >= program().speedupStart + program().speedupRamp) {
+        tail_ = atFloor();
         tail_.start(now(p.time, r.dt), before(p.time, r.dt), p.fracture);
+    }
     if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, r.summary.peakStress);
 }
 
 std::vector<double> AdaptiveTailDrive::state() const {
-    std::vector<double> s = fixed_.state();
+    const Drive& d = program();
+    std::vector<double> s{d.speedupStart, d.speedup, d.speedupRamp};
     if (tail_.active())
         for (double x : tail_.state()) s.push_back(x);
     return s;
 }
 
 void AdaptiveTailDrive::setState(const std::vector<double>& s) {
-    fixed_.setState(s);
-    tail_ = AdaptiveDrive(tail_.limits());
-    if (s.size() > 1) tail_.setState({s.begin() + 1, s.end()});
+    fixed_.speedUp(s.at(0), s.at(1), s.at(2));
+    tail_ = AdaptiveDrive(lim_);
+    if (s.size() > 3) tail_ = atFloor(), tail_.setState({s.begin() + 3, s.end()});
 }
 
 }  // namespace ldem

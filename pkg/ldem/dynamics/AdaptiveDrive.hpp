@@ -1,16 +1,36 @@
 // The adaptive drive after the load loss (tail_drive adaptive): the engine
 // (AdaptiveDrive) and the drive part that uses it (AdaptiveTailDrive).
 // Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step);
-// its floor is the fixed drive's loss_speedup.
+// loss_speedup caps its floor.
 //
 // Between the load loss and separation the specimen is mostly chains straightening; what
 // loads them beyond their static share is the drag of the mass-proportional
 // damping (on absolute velocity) and inertia, both in proportion to the
-// drive's speed (results/separation/speedup_sweep.md). From the load loss the
-// drive first speeds up to the floor S_f = loss_speedup exactly as the fixed
-// one does (the same ramp, the same bits); from the end of that ramp on, U is
-// state and its velocity factor S >= S_f follows, record by record, a
-// quasi-static criterion on state n:
+// drive's speed (results/separation/speedup_sweep.md). Past its load loss a
+// specimen hangs from the drive on its chains (or a triangular cube on its
+// hinge), and the part above them moves with it (0.48 m, seed 2: the whole
+// cube, K = M v^2 / 2). The stress that the drive's own motion puts on that
+// part's face is rho H (a + D_f v) at most (H the gauge length, v = S v0 the
+// most-pulled point's velocity); from the load loss on, at every instant,
+//   rho H v0 (dS/dt + D_f S) <= tail_drag x peak.                        (1)
+// Its steady form is S <= S_d = tail_drag peak / (rho H v0 D_f).
+//
+// The ramp. From the load loss the drive speeds up to the floor
+//   S_f = clamp(S_d / 2, 1, loss_speedup)
+// (half of the budget left to drag once there) along the fixed drive's smooth
+// ramp, S(t) = 1 + (S_f - 1)(1 - cos(pi t / t_q)) / 2, over
+//   t_q = max(t_r, pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1)))),
+// the shortest such ramp within (1): the largest of (1)'s left side over the
+// ramp is rho H v0 D_f [(S_f + 1)/2 + sqrt(A^2 + (S_f - 1)^2 / 4)],
+// A = pi (S_f - 1) / (2 D_f t_q), and it equals the budget rho H v0 D_f S_d at
+// that t_q. Where (1) allows the fixed drive's ramp (S_f = loss_speedup,
+// t_q = t_r), it is that ramp, bit for bit. (Measured without it: the fixed
+// ramp to 20, a = 145 m/s^2 at every size, broke bars in the hanging
+// triangular cubes, +3.7 % of U_min at 0.48 m by mean strain 4e-3, +12 % at
+// 0.72 m, +22 % at 0.96 m; results/separation/study_in_an_hour.md.)
+//
+// From the end of the ramp on, U is state and its velocity factor S >= S_f
+// follows, record by record, a quasi-static criterion on state n:
 //   softening    the fracture energy grew since the last record (some bar's damage moved);
 //   chain load   c = |<s_support>| / peak: what the chains carry to the fixed
 //                face, against the specimen's strength; it rises as a chain
@@ -19,20 +39,15 @@
 //                a specimen rings after its load loss, a free vibration the
 //                drive neither makes nor feeds;
 //   target       S_f while softening, else clamp(S_f tail_load / c, S_f, tail_max_speedup):
-// back at the reference rate whenever a bar softens or the chains carry
+// back at the floor whenever a bar softens or the chains carry
 // tail_load x peak, faster in inverse proportion to their load while slack.
 // The speed then moves towards the target within three bounds per record:
 // - the ratio tail_step;
-// - drag and inertia: past its load loss a specimen hangs from the drive on
-//   its chains, and the part above them moves with it (0.48 m, seed 2, at
-//   S_f: the whole cube, K = M v^2 / 2). The stress that the drive's own
-//   motion puts on that part's face is rho H (a + D_f v) at most (H the
-//   gauge length); it is kept below tail_drag x peak:
-//       S_1 <= (B + S_0) / (1 + D_f T),   S_1 >= S_0 - B,   B = tail_drag peak T / (rho H v0),
-//   T = R dt the record interval, a = (S_1 - S_0) v0 / T over it (measured
-//   without it, 0.48 m seed 2: a factor of 1.1 per record from 20 to 60
-//   broke bars in the hanging cube and doubled U);
-// - never below S_f (the fixed drive's own rate is always allowed).
+// - (1) over the record interval T = R dt, a = (S_1 - S_0) v0 / T over it:
+//       S_1 <= (B + S_0) / (1 + D_f T),   S_1 >= S_0 - B,   B = tail_drag peak T / (rho H v0)
+//   (measured without it, 0.48 m seed 2: a factor of 1.1 per record from 20
+//   to 60 broke bars in the hanging cube and doubled U);
+// - never below S_f.
 // Undamped (zeta 0) the drive stays fixed (Registry.cpp: makeDrive).
 // Within a record interval of R steps the velocity ramps linearly from S_0
 // (the factor at the record) to S_1:
@@ -51,17 +66,26 @@ namespace ldem {
 class AdaptiveDrive {
 public:
     struct Limits {
-        double floor = 20, ceiling = 2000;  // S_f = loss_speedup, tail_max_speedup
+        double floor = 20, ceiling = 2000;  // S_f (loss_speedup until the load loss), tail_max_speedup
         double load = 0.005, drag = 0.1;    // tail_load, tail_drag
         double step = 1.1;                  // tail_step
         double tau = 0;                     // averaging time of the support's stress [s] (0: none)
         double column = 0;                  // rho H v0 / T: face stress of a unit change of S over a record [Pa] (0: no bound)
         double dampingT = 0;                // D_f T
+        double interval = 0;                // T, the record interval [s]
+    };
+    // The ramp after the load loss: to the factor floor over time [s].
+    struct Ramp {
+        double floor = 1, time = 0;
     };
     AdaptiveDrive() = default;
     explicit AdaptiveDrive(const Limits& l) : lim_(l) {}
     // The criterion (a pure function): the factor the drive heads for.
     static double target(const Limits& l, bool softening, double chainLoad);
+    // (1)'s steady bound S_d = tail_drag peak / (rho H v0 D_f) (infinite without the bound).
+    static double steadyBound(const Limits& l, double peakStress);
+    // The ramp from 1 to S_f = clamp(S_d / 2, 1, l.floor) within (1), at least as long as rampTime.
+    static Ramp rampAfterLoss(const Limits& l, double peakStress, double rampTime);
     // The factor at the end of the next record interval from the factor s now:
     // the target within the bounds of tail_step and of drag and inertia.
     double next(double s, bool softening, double chainLoad, double peakStress) const;
@@ -89,15 +113,15 @@ private:
     double support_ = 0;      // average of s_support [Pa]
 };
 
-// The drive part: the fixed drive (the same bits) until the end of its ramp to
-// the floor after the load loss, then the adaptive drive.
+// The drive part: the fixed drive's program (the same bits until the load
+// loss), from there its ramp to the floor (rampAfterLoss), then the adaptive drive.
 class AdaptiveTailDrive {
 public:
     static constexpr const char* name = "adaptive";
     struct Params {
         LDEM_ADAPTIVE_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
-    AdaptiveTailDrive(const ConstantRateDrive& fixed, const AdaptiveDrive::Limits& l) : fixed_(fixed), tail_(l) {}
+    AdaptiveTailDrive(const ConstantRateDrive& fixed, const AdaptiveDrive::Limits& l) : fixed_(fixed), tail_(l), lim_(l) {}
     double now(double t, double dt) const { return tail_.active() ? tail_.U : fixed_.now(t, dt); }
     double before(double t, double dt) const { return tail_.active() ? tail_.Uprev : fixed_.before(t, dt); }
     double next(const DriveStep& c) {
@@ -108,13 +132,20 @@ public:
     void record(const DriveRecord& r);
     const Drive& program() const { return fixed_.program(); }
     const AdaptiveDrive& adaptive() const { return tail_; }
-    // The fixed drive's state, then the adaptive one's once it started.
+    // The ramp's start, floor and time, then the adaptive drive's state once it started.
     std::vector<double> state() const;
     void setState(const std::vector<double>& s);
 
 private:
+    // The adaptive drive at the ramp's floor.
+    AdaptiveDrive atFloor() const {
+        AdaptiveDrive::Limits l = lim_;
+        l.floor = program().speedup;
+        return AdaptiveDrive(l);
+    }
     ConstantRateDrive fixed_;
     AdaptiveDrive tail_;
+    AdaptiveDrive::Limits lim_;  // floor: loss_speedup
 };
 
 }  // namespace ldem

@@ -9,7 +9,9 @@
 // Once the load is lost the specimen hangs on mechanisms that carry almost no
 // force, and separation needs strains far beyond the peak; a faster drive
 // reaches them in fewer steps: the drive speeds up by a factor S
-// (loss_speedup), with the same smooth ramp starting at t_s:  U(t) + (S - 1) U(t - t_s).
+// (loss_speedup), with a smooth ramp of t_q starting at t_s:  U(t) + (S - 1) U_q(t - t_s),
+// U_q the U above with t_q for t_r (the fixed drive: t_q = t_r; the adaptive
+// one picks S and t_q at the load loss, AdaptiveDrive.hpp).
 // The other drives (AdaptiveDrive.hpp, ServoDrive.hpp) share this program.
 // Parameters: LDEM_DRIVE_PARAMETERS (strain_rate, ramp_time), LDEM_SPEEDUP_PARAMETERS (loss_speedup).
 #pragma once
@@ -41,6 +43,7 @@ struct Drive {
     double rampTime = 0;  // [s]
     double speedup = 1;   // velocity factor after speedupStart
     double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
+    double speedupRamp = 0;  // t_q, the speed-up's ramp [s]
     double displacement(double t) const;
 };
 
@@ -54,12 +57,18 @@ public:
     ConstantRateDrive() = default;  // at rest: v0 = 0
     // v0 = strain_rate x the gauge length; the ramp ramp_time, or two fundamental periods (0).
     ConstantRateDrive(const Params& p, double gaugeLength, double period1)
-        : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {}
+        : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {
+        program_.speedupRamp = program_.rampTime;
+    }
     double now(double t, double) const { return program_.displacement(t); }
     double before(double t, double dt) const { return program_.displacement(t - dt); }
     double next(const DriveStep& c) const { return program_.displacement(c.time + c.dt); }
     void record(const DriveRecord& r) {
         if (r.lossNow) program_.speedupStart = r.point.time;
+    }
+    // From time on, factor times as fast, ramped in over ramp.
+    void speedUp(double time, double factor, double ramp) {
+        program_.speedupStart = time, program_.speedup = factor, program_.speedupRamp = ramp;
     }
     const Drive& program() const { return program_; }
     std::vector<double> state() const { return {program_.speedupStart}; }

@@ -58,7 +58,8 @@ Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSet
     // specimen's height to follow the drive; D_f T its drag's share.
     const double T = s.recordEvery * s.dt;
     const AdaptiveDrive::Limits limits{load.lossSpeedup, p.tailMaxSpeedup, p.tailLoad, p.tailDrag, p.tailStep,
-                                       s.splitWindow,    m.rho * s.gaugeLength * fixed.program().v0 / T, Df * T};
+                                       s.splitWindow,    m.rho * s.gaugeLength * fixed.program().v0 / T,
+                                       Df * T,           T};
     return AdaptiveTailDrive(fixed, limits);
 }
 
