@@ -1,7 +1,7 @@
 """Issue 40, item 1: the default thread count (threads = 0) is as many as the
 lattice can use (one per 50,000 bars: a small cube gets one) and at most the
 cores free to the process; the count used is printed and in summary.json.
-Its speed against --threads 1 and 2 is measured by scripts/bench_threads.py."""
+Its speed against --threads 1 and 2 is measured by dev/bench_threads.py."""
 import json
 import os
 import subprocess

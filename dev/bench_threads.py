@@ -5,8 +5,8 @@ as it is and beside a second CPU-bound job (`yes > /dev/null`); prints the
 median wall time of the run (summary.json wall_s: set-up and loop) of each
 variant, the threads the default chose, and default / the better of 1 and 2.
 
-    scripts/bench_threads.py --sizes 0.12,0.48 --final-strain 1e-4 --rounds 5
-    scripts/bench_threads.py --sizes 0.24 --variants 2,2:active --final-strain 2e-4   # the wait policy's cost
+    dev/bench_threads.py --sizes 0.12,0.48 --final-strain 1e-4 --rounds 5
+    dev/bench_threads.py --sizes 0.24 --variants 2,2:active --final-strain 2e-4   # the wait policy's cost
 
 A variant is THREADS (0: the default) or THREADS:POLICY (OMP_WAIT_POLICY,
 passive unless given). The load average is printed with each condition: on
