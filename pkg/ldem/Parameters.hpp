@@ -160,6 +160,14 @@
 #define LDEM_CHECK_MEMBER(type, member, name, def, unit, domain, help) ::ldem::checkParameter(name, unit, member, domain);
 // A dynamic part's own Params (its list) taken from the struct `from` whose list splices it in: `to.x = from.x;`.
 #define LDEM_COPY_MEMBER(type, member, name, def, unit, domain, help) to.member = from.member;
+// A part's Params (its list LIST) from the struct its list is spliced into.
+#define LDEM_PART_PARAMS(Params, LIST, source) \
+    [&] {                                      \
+        Params to;                             \
+        const auto& from = source;             \
+        LIST(LDEM_COPY_MEMBER)                 \
+        return to;                             \
+    }()
 
 namespace ldem {
 

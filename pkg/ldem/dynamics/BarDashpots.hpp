@@ -60,7 +60,8 @@ public:
         d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
         if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
     }
-    BarDashpots(const RunParams& run, const DampingSetup& s) : BarDashpots(params(run), s) {}
+    BarDashpots(const RunParams& run, const DampingSetup& s)
+        : BarDashpots(LDEM_PART_PARAMS(Params, LDEM_BAR_DASHPOT_PARAMETERS, run), s) {}
     bool on() const { return d_.beta > 0; }
     double beta() const { return d_.beta; }  // [s]
     double stepFactor() const { return dampedStepFactor(zeta_); }
@@ -91,11 +92,6 @@ public:
     }
 
 private:
-    static Params params(const RunParams& from) {
-        Params to;
-        LDEM_BAR_DASHPOT_PARAMETERS(LDEM_COPY_MEMBER)
-        return to;
-    }
     double zeta_ = 0;
     DashpotState d_;
 };

@@ -27,7 +27,8 @@ public:
     MassDamping() = default;  // none: D_f = 0
     MassDamping(const Params& p, double omega1) : Df_(massDampingCoefficient(p.zeta, omega1)) {}
     // Every damping is built from the run's parameters and its set-up (Registry.hpp: makeDampings).
-    MassDamping(const RunParams& run, const DampingSetup& s) : MassDamping(params(run), s.omega1) {}
+    MassDamping(const RunParams& run, const DampingSetup& s)
+        : MassDamping(LDEM_PART_PARAMS(Params, LDEM_MASS_DAMPING_PARAMETERS, run), s.omega1) {}
     double coefficient() const { return Df_; }  // D_f [1/s]
     // Implicit in the node update (the mean of v(n-1/2) and v(n+1/2)): no bound on the time step.
     double stepFactor() const { return 1.0; }
@@ -40,11 +41,6 @@ public:
     void setState(const std::vector<double>&) {}
 
 private:
-    static Params params(const RunParams& from) {
-        Params to;
-        LDEM_MASS_DAMPING_PARAMETERS(LDEM_COPY_MEMBER)
-        return to;
-    }
     double Df_ = 0;
 };
 

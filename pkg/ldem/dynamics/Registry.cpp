@@ -4,15 +4,6 @@
 
 namespace ldem {
 
-// A part's Params from the struct its parameters' list is spliced into.
-#define LDEM_PART_PARAMS(Params, LIST, source) \
-    [&] {                                      \
-        Params to;                             \
-        const auto& from = source;             \
-        LIST(LDEM_COPY_MEMBER)                 \
-        return to;                             \
-    }()
-
 namespace {
 template <class... D>
 std::tuple<D...> makeEach(const std::tuple<D...>*, const RunParams& run, const DampingSetup& s) {
