@@ -3,8 +3,9 @@
 // ratios and the time step are there).
 //   F_d = beta (EA/L) r de/dt,   de/dt = s = d.(v_B - v_A) / L,
 // d the current bar vector (a rigid rotation stretches no dashpot), r the
-// law's ratio of the bar's dashpot (laws/BarLaw.hpp: its secant ratio once it
-// has left the elastic branch, else 0), v the velocities v(n-1/2).
+// law's ratio of the bar's dashpot (dashpotRatio in laws/BarLaw.hpp: 1 while
+// a bar that has left its elastic branch is in compression, else 0), v the
+// velocities v(n-1/2).
 //
 // The work: F_k, the dashpot of step k, works over the centred increment
 // (x(k+1) - x(k-1))/2 = dt (v(k-1/2) + v(k+1/2))/2, so the bar dissipates

@@ -109,10 +109,11 @@
 
 // Dashpots in the bars that have left their elastic branch (dynamics/BarDashpots.hpp).
 #define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
-    X(double, zetaHigh, "zeta_high", 0.0, "", Domain::closedOpen(0, 1),                                      \
+    X(double, zetaHigh, "zeta_high", 0.2, "", Domain::closedOpen(0, 1),                                      \
       "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
-      "their elastic branch (zeta_high omega/omega_max on mode omega); they damp the modes that clap across "  \
-      "closing cracks; the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
+      "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
+      "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
+      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
 
 // The converged stop (dynamics/ConvergedStop.hpp).
 #define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
@@ -142,9 +143,9 @@
     LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                        \
     LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                     \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \
-    X(double, dtSafety, "dt_safety", 0.4, "", Domain::openClosed(0, 1),                                      \
-      "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high): above "  \
-      "0.4, closing cracks pump energy into the undamped highest modes (with zeta_high 0.1, 0.8 is safe)")    \
+    X(double, dtSafety, "dt_safety", 0.8, "", Domain::openClosed(0, 1),                                      \
+      "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high); without "\
+      "the dashpots (zeta_high 0) keep it at 0.4: above, closing cracks pump energy into the highest modes")  \
     LDEM_LOAD_LOSS_PARAMETERS(X)                                                                             \
     X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                             \
       "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")            \

@@ -25,8 +25,7 @@
 //       if it may not be (the row then goes through the law);
 //   rowLaw(p, EA, s, gx, gy, gz)   the law with damage, from the bar's stretch s
 //       (a SeriesStretch or a BarStretch: strain() and elasticForcePerLength(EA));
-//       returns the ratio r of the bar's dashpot (BarDashpot.hpp): its secant
-//       ratio F/(EA eps) once it has left the elastic branch, else 0.
+//       returns the ratio r of the bar's dashpot (dashpotRatio below).
 // du = u(B) - u(A); large displacements: the force acts along d = d0 + du.
 #pragma once
 #include <algorithm>
@@ -45,6 +44,12 @@ inline DamageState damageState(double kappa, double epsP, double epsR) {
     if (kappa >= epsR) return DamageState::Broken;
     return kappa > epsP ? DamageState::Damaged : DamageState::Undamaged;
 }
+
+// The ratio r of a bar's dashpot (BarDashpot.hpp), at damage kappa and strain
+// eps: 1 while a bar that has left its elastic branch is in compression (its
+// crack closed: there the faces clap), else 0, so that no dashpot bridges a
+// crack that opens (in tension it held the load of a fast tail up: issue 41).
+inline double dashpotRatio(double kappa, double epsP, double eps) { return kappa > epsP && eps < 0.0 ? 1.0 : 0.0; }
 
 // The path of a row of bars through the force loop (InternalForces.hpp): the
 // elastic fast path while every bar is elastic; then the law, from the

@@ -162,7 +162,7 @@ public:
             const double r = bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
             const double Fl = s.elasticForcePerLength(EA) * r;
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return k > epsP ? r : 0.0;  // its dashpot's ratio (BarDashpot.hpp)
+            return dashpotRatio(k, epsP, eps);
         }
     };
     Rows rows() { return {kappa.data(), epsK.data(), epsR.data(), epsP, sK, stretchOfStrain(epsP), softening.data()}; }

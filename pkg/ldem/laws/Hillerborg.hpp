@@ -153,7 +153,7 @@ public:
             const double r = hillerborg::forceRatio(eps, k, epsP, epsR[p]);
             const double Fl = s.elasticForcePerLength(EA) * r;
             gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return k > epsP ? r : 0.0;  // its dashpot's ratio (BarDashpot.hpp)
+            return dashpotRatio(k, epsP, eps);
         }
     };
     Rows rows() { return {kappa.data(), epsR.data(), epsP, stretchOfStrain(epsP), softening.data()}; }
