@@ -260,6 +260,8 @@ void Simulation::finishStep() {
         (d == 0 ? v_.x : d == 1 ? v_.y : v_.z)[n] = w * (Unext - Unow) / dt_;
     }
     exchangeHalo(lat_, u_);  // the neighbours' layers next to mine, moved by them
+    // The bars' dashpots read v(n+1/2) at both ends of a bar (BarDashpot.hpp): the halo's too.
+    if (barPass(dampings_, v_).state) exchangeHalo(lat_, v_);
     time_ = tNext;
     ++step_;
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
