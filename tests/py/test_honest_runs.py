@@ -39,22 +39,22 @@ def test_the_core_alone_refuses_the_same_jump():
     (pkg/ldem/dynamics/QuasiStatic.hpp). Before, the core ran it: the bars
     dissipated fracture energy out of no work (a balance error of exactly 1)."""
     sim = ldem.CubeTest(size=0.04, strain_rate=1e12, final_strain=1e-3, threads=1).simulation()
-    with pytest.raises(ValueError, match="strain_rate 1e\\+12 1/s moves the drive by .* far below 48.1 1/s"):
+    with pytest.raises(ValueError, match="strain_rate 1e\\+12 1/s moves the drive by .* far below 29.3 1/s"):
         sim.run(lambda p: True)
     assert sim.steps == 0
 
 
 def test_a_run_too_fast_for_quasi_static_is_flagged(cli, tmp_path):
-    """0.04 m at 2 /s: the kinetic energy at the peak is 2.3% of the external
-    work (measured), above the 1% limit: summary.json and the terminal say so,
+    """0.04 m at 2 /s: the kinetic energy at the peak is 1.5% of the external
+    work (measured at the defaults' step, 0.8 of the limit with the bar dashpots), above the 1% limit: summary.json and the terminal say so,
     the run still exits 0. At 0.5 /s it is 0.55%: not flagged."""
     fast, slow = tmp_path / "fast", tmp_path / "slow"
     r = cli("cube", *SMALL, "--strain-rate", "2", "--stop-at", "load_loss", "--out", str(fast))
     assert r.returncode == 0, r.stderr
-    assert "warning: not quasi-static: the kinetic energy at the peak is 2.3% of the external work" in r.stderr
+    assert "warning: not quasi-static: the kinetic energy at the peak is 1.5% of the external work" in r.stderr
     q = json.loads((fast / "summary.json").read_text())["quasi_static"]
-    assert q["flagged"] and 0.015 < q["kinetic_over_work_at_peak"] < 0.04 and q["kinetic_limit"] == 0.01
-    assert 0.03 < q["drive_step_over_eps_p"] < 0.06  # 2 /s x 1.31e-6 s / 6.3e-5
+    assert q["flagged"] and 0.012 < q["kinetic_over_work_at_peak"] < 0.04 and q["kinetic_limit"] == 0.01
+    assert 0.05 < q["drive_step_over_eps_p"] < 0.09  # 2 /s x 2.15e-6 s / 6.3e-5
     r = cli("cube", *SMALL, "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(slow))
     assert r.returncode == 0 and "quasi-static" not in r.stderr, r.stderr
     q = json.loads((slow / "summary.json").read_text())["quasi_static"]
