@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Two builds of ldem-bench, timed in turn (A B A B ...), with the median of
 each figure and the median of the pair-by-pair ratios B/A: a speed-up claimed
-on this noisy machine comes from here (README, Performance).
+on this noisy machine comes from here (docs/performance.md).
 
     dev/bench_compare.py OLD/pkg/ldem-bench NEW/pkg/ldem-bench --pairs 7 -- --modules 48 --threads 2
 

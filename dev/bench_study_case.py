@@ -2,7 +2,7 @@
 """A whole study case against the benchmark of its lattice: `ldem cube --size S`
 (uniform, to separation, one thread; its wall time / steps / bars) and
 `ldem-bench --modules S/L0 --threads 1` (the bare time step, elastic and past
-load loss), in turn, with the ratio pair by pair (README, Performance).
+load loss), in turn, with the ratio pair by pair (docs/performance.md).
 
     dev/bench_study_case.py --size 0.24 --pairs 3
 """

@@ -1,4 +1,4 @@
-"""The example gallery of README: runs every examples/*.toml (unless its run
+"""The example gallery of docs/specimens.md: runs every examples/*.toml (unless its run
 folder holds its finished run already: a study's case, ldem.study.Named) and puts its curve and its crack picture side by side
 in doc/gallery/NAME.png, at their own scale: one font size across the panels.
 

@@ -1,5 +1,5 @@
 """ldem: truss-like lattice Discrete Element Method (Riera and Iturrioz) for
-fracture and size effects in concrete. See README.md for the manual.
+fracture and size effects in concrete. See README.md and docs/ for the manual.
 
     import ldem
     result = ldem.CubeTest(size=0.12, load="uniform", seed=1).run()     # data

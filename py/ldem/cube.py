@@ -104,7 +104,7 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
     return CubeResult(test, sim, rows, summary, time.perf_counter() - t0)
 
 
-# Quasi-static loading (README, Outputs): the guards are the core's
+# Quasi-static loading (docs/cube.md, Outputs): the guards are the core's
 # (pkg/ldem/dynamics/QuasiStatic.hpp), so that every run gets them: a drive
 # that moves by eps_p or more in one step is refused (Simulation.run refuses it
 # too; this says it before any file is opened), and a run whose kinetic energy

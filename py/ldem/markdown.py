@@ -36,7 +36,7 @@ def tail_drive_words(p: dict) -> str:
         return ""
     return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
             f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}; "
-            "README, `ldem cube`)")
+            "docs/cube.md)")
 
 
 def cost_section(case_rows) -> list:

@@ -260,7 +260,7 @@ def add_parsers(sub) -> None:
     c.set_defaults(func=cmd_cube)
 
     f = sub.add_parser("run", help="any specimen from a TOML file (examples/: beams, cylinders, dog-bones, cubes)",
-                       description="Runs the specimen FILE describes (README 'Specimens from a file'); writes what "
+                       description="Runs the specimen FILE describes (docs/specimens.md); writes what "
                                    "ldem cube writes into --out. A bad file: one line naming the key and its line, "
                                    "exit 2.", formatter_class=HelpFormatter)
     f.add_argument("file", metavar="FILE", help="the specimen's TOML file")

@@ -5,7 +5,7 @@ group does (held, driven, free) and what the run measures.
     test = ldem.SpecimenTest.from_file("examples/beam_3pb.toml")
     result = test.run()          # data; ldem.run_cube(test, out=...) writes the files too
 
-The file (examples/ has one per classic test; README "Specimens from a file"):
+The file (examples/ has one per classic test; docs/specimens.md):
     title = "..."
     [shape]      kind = "box" | "cylinder" | "dogbone" | "mask", L0 [m] and the kind's sizes [m]
     [groups.NAME] face = "z-" | plane = {x = 0.1} | line = {x = 0.1, z = 0} | box = {min, max} | point = [x, y, z]

@@ -1,4 +1,4 @@
-"""The package's shape (README, Architecture): layers import downwards only,
+"""The package's shape (docs/developers.md, ARCHITECTURE.md): layers import downwards only,
 no import cycles (module-level or inside functions), no module over 300 lines
 without the reason at its top, no runner of cases in scripts/ or dev/ (studies
 live in ldem.study), no developer's tool in scripts/ (dev/ holds them), each

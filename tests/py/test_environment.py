@@ -60,8 +60,8 @@ def _packages():
         return [p for line in f if not line.startswith("#") for p in line.split()]
 
 
-def test_readme_lists_the_packages_install_sh_installs():
-    with open(os.path.join(ROOT, "README.md")) as f:
+def test_install_page_lists_the_packages_install_sh_installs():
+    with open(os.path.join(ROOT, "docs", "install.md")) as f:
         readme = " ".join(f.read().split())
     assert " ".join(_packages()) in readme.replace("`", "")
 

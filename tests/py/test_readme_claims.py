@@ -439,12 +439,12 @@ def test_paraview_series(cli, tmp_path):
     assert len(end_crack.cells[0].data) == (last.cell_data["damage_state"][0] == 2).sum() > 0
 
 
-def test_readme_yade_batch_command_creates_its_log_folder():
+def test_docs_yade_batch_command_creates_its_log_folder():
     """yade-batch (YADE 2023.02) hangs when the folder of --log is missing: the
-    README's command creates it first."""
-    with open(os.path.join(ROOT, "README.md")) as f:
+    command of docs/python.md creates it first."""
+    with open(os.path.join(ROOT, "docs", "python.md")) as f:
         lines = [ln for ln in f if "yade-double-batch" in ln and "--log" in ln and not ln.startswith("(")]
-    assert lines, "README shows no yade-batch command with --log"
+    assert lines, "docs/python.md shows no yade-batch command with --log"
     for line in lines:
         log = re.search(r"--log '([^']+)'", line).group(1)
         assert line.startswith(f"mkdir -p {os.path.dirname(log)} && yade-double-batch"), line
