@@ -142,6 +142,8 @@ public:
     int recordEvery() const { return recordEvery_; }
     int threads() const { return threads_; }  // OpenMP threads of the run (threadsFor, Parallel.hpp)
     double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
+    // The run's summary so far, as of its last record (an interrupted run's peak and events).
+    const RunSummary& summarySoFar() const { return progress_.summary; }
 
 private:
     // The drive's displacement U at t_n and at t_n-1.

@@ -229,11 +229,11 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "quasi_static": quasi_static(summary),
             "stop_reason": summary.stop_reason,
         })
-    elif len(curve["stress_MPa"]):  # failed run: what the rows recorded so far say
-        k = int(np.argmax(curve["stress_MPa"]))
-        s.update({"peak_stress_MPa": float(curve["stress_MPa"][k]),
-                  "strain_at_peak": float(curve["mean_strain"][k]),
-                  "fracture_energy_J": float(curve["fracture_J"][-1]), "min_fracture_energy_J": u_min})
+    elif len(curve["stress_MPa"]):  # failed run: the core's summary as of its last record (the tracked peak,
+        so_far = sim.summary_so_far  # exact: curve rows restored from curve.csv keep only 10 digits)
+        s.update({"peak_stress_MPa": so_far.peak_stress * 1e-6, "strain_at_peak": so_far.strain_at_peak,
+                  "edge_strain_at_peak": so_far.edge_strain_at_peak, "fracture_energy_J": so_far.fracture_energy,
+                  "min_fracture_energy_J": u_min})
     s.update({
         "clamped_bars": sim.clamped_bars,
         "n_nodes": sim.total_nodes,  # of the whole lattice, also when split over MPI ranks

@@ -272,6 +272,13 @@ class SpecimenTest:
             raise SpecimenError(f"{path}: not valid TOML: {e}") from None
         return cls(data, path, text, overrides)
 
+    @classmethod
+    def of_parameters(cls, parameters: dict) -> "SpecimenTest":
+        """The test whose parameters() these are (summary.json's: ldem rerun): the description, with the
+        parameters it ran with (its file's and the overrides) over it."""
+        given = {k: v for k, v in parameters["parameters"].items() if k not in _CUBE_ONLY}
+        return cls(parameters["description"], overrides=given)
+
     def describe(self) -> str:
         return f"{self.build.title}, seed {self.seed}"
 

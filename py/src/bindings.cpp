@@ -442,6 +442,8 @@ PYBIND11_MODULE(_core, m) {
                                "the OpenMP threads of the run: threads if set, else OMP_NUM_THREADS, else as many as "
                                "the lattice can use and the machine has free (Parallel.hpp, threadsFor)")
         .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)
+        .def_property_readonly("summary_so_far", &Simulation::summarySoFar,
+                               "the run's summary as of its last record (an interrupted run's peak and events)")
         .def_property_readonly("area", [](const Simulation& s) { return s.measures().area; },
                                "area the reactions are divided by [m^2]")
         .def_property_readonly("gauge_length", [](const Simulation& s) { return s.measures().gaugeLength; },
