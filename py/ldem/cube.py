@@ -57,6 +57,10 @@ class _CubeTestMethods:
     def describe(self) -> str:
         return f"{self.size:g} m cube, {self.load}, seed {self.seed}"
 
+    def axis_labels(self) -> tuple:
+        """(strain, stress) labels: the cube's mean strain and normal stress."""
+        return STRAIN_LABEL, STRESS_LABEL
+
     # -- running ------------------------------------------------------------
     def run(self, observers=(), simulation=None, previous_rows=()) -> "CubeResult":
         """Runs the test to separation (or load loss, see stop_at; or the final
@@ -157,6 +161,23 @@ CubeTest = dataclasses.make_dataclass(
                "__module__": __name__})
 
 
+# What a cube's measures are: the words of its figures' axes, its terminal
+# lines and summary.json's "labels" (a specimen says its own: measure.strain_label, stress_label).
+STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
+
+
+def labels(test) -> dict:
+    """{"strain": ..., "stress": ...}: test's axis labels, "name [unit]" (a cube's, where a test gives none)."""
+    own = test.axis_labels() if hasattr(test, "axis_labels") else ("", "")
+    return {"strain": own[0] or STRAIN_LABEL, "stress": own[1] or STRESS_LABEL}
+
+
+def label_words(label: str) -> tuple:
+    """(name, unit) of a label "name [unit]": ("deflection/D", "-"); ("", ...) parts absent stay ""."""
+    name, _, unit = label.partition(" [")
+    return name.strip(), unit.rstrip("]").strip()
+
+
 # The curve's columns, in curve.csv's order; stresses in MPa (the core's are Pa).
 CURVE_COLUMNS = ["step", "time_s", "mean_strain", "stress_MPa", "stress_top_MPa", "external_work_J", "kinetic_J",
                  "elastic_J", "fracture_J", "damping_J", "damaged_bars", "broken_bars"]
@@ -249,6 +270,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "threads": sim.threads,  # those the run used (threadsFor, Parallel.hpp)
         "mpi_ranks": _core.mpi_ranks(),  # processes the lattice was split over (mpirun -np)
         "wall_s": wall_s,
+        "labels": labels(test),  # what stress and strain (peak_stress_MPa, strain_at_peak, the curve) are here
         "provenance": provenance(),
         "parameters": test.parameters(),
     })

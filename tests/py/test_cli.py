@@ -81,7 +81,7 @@ def test_cube_run_writes_all_outputs(cli, tmp_path):
 
     s = json.loads((out / "summary.json").read_text())
     # What it prints is what summary.json says.
-    assert f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}" in r.stdout
+    assert f"peak normal stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}" in r.stdout
     assert f"U_num {s['U_num_J']:.4g} J, U_num/U_min {s['U_ratio']:.3f}" in r.stdout
     assert f"{s['steps']} steps of {s['dt_s']:.3e} s" in r.stdout
     for key in ("peak_stress_MPa", "strain_at_peak", "fracture_energy_J", "min_fracture_energy_J",
