@@ -224,7 +224,7 @@ def _event(e) -> dict:
 
 
 def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
-    u_min = sim.min_fracture_energy
+    u_min = sim.min_fracture_energy if sim.min_fracture_energy > 0 else None  # None: no ligament declared
     s = {"status": status}
     if summary is not None:
         sep = summary.separation
@@ -235,14 +235,14 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "edge_strain_at_peak": summary.edge_strain_at_peak,
             "separated": sep.reached,
             "U_num_J": u_num,
-            "U_ratio": None if u_num is None else u_num / u_min,
+            "U_ratio": None if u_num is None or u_min is None else u_num / u_min,
             "load_loss": _event(summary.load_loss),
             "separation": _event(sep),
             # stop_at "converged" on a specimen that hinges: the energy at the stop, never U_num.
             "converged": _event(summary.converged),
             "U_final_J": summary.converged.fracture if summary.converged.reached else None,
             "fracture_energy_J": summary.fracture_energy,
-            "min_fracture_energy_J": u_min,
+            "min_fracture_energy_J": u_min,  # E[G_f] x the ligament (Simulation::minFractureEnergy)
             # The cheapest cut needs the whole lattice on one process: not under mpirun.
             "U_mincut_J": None if _core.mpi_launched() else cheapest_cut(sim),
             "energy_balance_error": summary.energy_balance_error,

@@ -12,7 +12,7 @@ The file (examples/ has one per classic test; README "Specimens from a file"):
                  (several selectors: the nodes all of them select) | union = ["a", "b"]
                  fix = ["x", "z"] (held at 0), drive = {z = -1.0} (u_z = -1 x U(t)), linear = "x"
                  (the drive's weight grows linearly from 0 to its value across the group along x)
-    [measure]    support, loaded (group names), area [m^2], gauge_length [m],
+    [measure]    support, loaded (group names), area [m^2], gauge_length [m], ligament [m^2] (U_min = E[G_f] x it),
                  probes = {cmod = {a = [..], b = [..], direction = "x"}},
                  control = "cmod" (a servo holds the probe to loading.opening_rate [m/s]),
                  stress_label, strain_label (the figures' axes: "F/(bD) [MPa]", "deflection/D [-]")
@@ -41,7 +41,8 @@ _PARAMS = {p["name"]: p for p in PARAMETERS}
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
-_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control", "stress_label", "strain_label"}
+_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "ligament", "probes", "control", "stress_label",
+                 "strain_label"}
 
 
 def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
@@ -173,6 +174,7 @@ class Build:
         out["mean_drive_weight"] = float(weight[along].sum() / len(self.groups[out["loaded"]]))
         out["area"] = number(m.get("area"), where, "measure.area")
         out["gauge_length"] = number(m.get("gauge_length"), where, "measure.gauge_length")
+        out["ligament"] = number(m["ligament"], where, "measure.ligament") if "ligament" in m else 0.0  # 0: no U_min
         for k in ("stress_label", "strain_label"):  # what stress and strain are for this specimen
             if not isinstance(m.get(k, ""), str):
                 raise where(f"measure.{k}", f"must be a text, an axis label (got {m[k]!r})")

@@ -100,7 +100,8 @@ def test_threads_0_honours_omp_num_threads(tmp_path):
 def _small_cube_file(tmp_path, edit=lambda t: t):
     text = open(os.path.join(ROOT, "examples", "cube_uniform.toml")).read()
     text = (text.replace("size = [0.12, 0.12, 0.12]", "size = [0.04, 0.04, 0.04]")
-            .replace("area = 0.0144 ", "area = 0.0016 ").replace("gauge_length = 0.12 ", "gauge_length = 0.04 "))
+            .replace("area = 0.0144 ", "area = 0.0016 ").replace("gauge_length = 0.12 ", "gauge_length = 0.04 ")
+            .replace("ligament = 0.0144 ", "ligament = 0.0016 "))
     path = tmp_path / "small.toml"
     path.write_text(edit(text))
     return str(path)
