@@ -155,6 +155,9 @@ def test_a_killed_run_continues_bit_for_bit(cli, tmp_path, signum, code):
     assert r.returncode == 0, r.stderr
     assert (cut / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
     assert json.loads((cut / "summary.json").read_text())["status"] == "done"
+    from ldem.rerun import RESTART_SKIPS, differences  # issue 40 item 4: every field of the summary too
+
+    assert differences(*(json.loads((d / "summary.json").read_text()) for d in (whole, cut)), RESTART_SKIPS) == []
     assert not (cut / "checkpoint.npz").exists()
     r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
     assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to " \
