@@ -68,8 +68,10 @@ def rerun_test_of(summary: dict, path: str):
     from .specimen import SpecimenTest
 
     params = summary.get("parameters") or {}
-    if "description" in params:
-        return SpecimenTest.of_parameters(params)
+    if "description" in params:  # the parameters its file does not give came from --set
+        given = SpecimenTest(params["description"]).build.params
+        return SpecimenTest(params["description"], overrides={k: v for k, v in params["parameters"].items()
+                                                              if given.get(k) != v})
     known = {f.name for f in dataclasses.fields(CubeTest)}
     cube = {k: v for k, v in params.items() if k in known}
     if not cube:

@@ -215,20 +215,21 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     """Every CubeTest parameter of the material, loading and run groups: the
     file's values over the defaults, then the overrides (--set)."""
     out = {p["name"]: p["default"] for p in PARAMETERS}
-    given = [(section, k, v) for section in ("material", "loading", "run")
+    given = [(section, k, v, False) for section in ("material", "loading", "run")
              for k, v in (data.get(section) or {}).items()]
-    given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v) for k, v in overrides.items()]
-    for section, k, v in given:
-        key = f"{section}.{k}"
+    given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v, True) for k, v in overrides.items()]
+    def blame(section: str, k: str, message: str, overridden: bool) -> SpecimenError:  # --set's by its option
+        return SpecimenError(f"--set {k}: {message}") if overridden else where(f"{section}.{k}", message)
+    for section, k, v, overridden in given:
         if k not in _PARAMS or k in _CUBE_ONLY or _PARAMS[k]["group"] != section:
-            raise where(key, "not a parameter of this section" if k in _PARAMS and k not in _CUBE_ONLY else
+            raise blame(section, k, "not a parameter of this section" if k in _PARAMS and k not in _CUBE_ONLY else
                         ("a cube-test parameter: a specimen says it with its groups" if k in _CUBE_ONLY
-                         else "unknown parameter (see ldem cube --help)"))
+                         else "unknown parameter (see ldem cube --help)"), overridden)
         kind = _PARAMS[k]["kind"]
         ok = isinstance(v, str) if kind == "choice" else (isinstance(v, (int, float)) and not isinstance(v, bool))
         if not ok or (kind == "int" and not isinstance(v, int)):
-            raise where(key, f"must be {'one of ' + ', '.join(_PARAMS[k]['choices']) if kind == 'choice' else kind} "
-                             f"(got {v!r})")
+            expected = "one of " + ", ".join(_PARAMS[k]["choices"]) if kind == "choice" else kind
+            raise blame(section, k, f"must be {expected} (got {v!r})", overridden)
         out[k] = float(v) if kind == "float" else v
     p = _core.CubeTestParams()
     for k, v in out.items():
@@ -237,7 +238,7 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
         p.material.validate(), p.loading.validate(), p.run.validate()
     except ValueError as e:
         name = str(e).split()[0]
-        raise where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(e)) from None
+        raise blame(_PARAMS.get(name, {"group": "parameters"})["group"], name, str(e), name in overrides) from None
     return out
 
 
@@ -273,13 +274,6 @@ class SpecimenTest:
         except tomllib.TOMLDecodeError as e:
             raise SpecimenError(f"{path}: not valid TOML: {e}") from None
         return cls(data, path, text, overrides)
-
-    @classmethod
-    def of_parameters(cls, parameters: dict) -> "SpecimenTest":
-        """The test whose parameters() these are (summary.json's: ldem rerun): the description, with the
-        parameters it ran with (its file's and the overrides) over it."""
-        given = {k: v for k, v in parameters["parameters"].items() if k not in _CUBE_ONLY}
-        return cls(parameters["description"], overrides=given)
 
     def describe(self) -> str:
         return f"{self.build.title}, seed {self.seed}"
