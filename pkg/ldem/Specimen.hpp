@@ -42,13 +42,13 @@ struct Measures {
     std::string loaded;         // the driven group: the same reactions, negated (their counterpart)
     int dim = 2;                // direction of the reactions and of the drive
     double area = 0;            // [m^2]
-    double ligament = 0;        // [m^2]: the section the specimen is meant to break through (a notched
-                                // beam's b (D - a0), a cube's face); U_min = E[G_f] x ligament; 0: none declared
     double gaugeLength = 0;     // [m]: drive velocity = strain rate x gauge length
     double meanDriveWeight = 0; // mean weight of the loaded group's DOFs along dim:
                                 // mean strain = U(t) x |meanDriveWeight| / gaugeLength
     std::vector<Probe> probes;  // extra displacements in every record
     int control = -1;           // the probe a servo holds to LoadingParams::openingRate (-1: none; Loading.hpp)
+    double ligament = 0;        // [m^2]: the section the specimen is meant to break through (a notched
+                                // beam's b (D - a0), a cube's face); U_min = E[G_f] x ligament; 0: none declared
     // The specimen is split when no chain of intact bars joins support and loaded.
     double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
 };
