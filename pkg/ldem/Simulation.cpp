@@ -394,7 +394,6 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         // A record step: forces, measure state n, then the rest of the step.
         computeForces();
         const CurvePoint p = measure();
-        trackPeak(p.stress, driveNow());
         const double total = p.kinetic + p.elastic + p.fracture + p.damping;
         // Energy from nothing (kinetic above all the work put in) or NaN: the
         // integration is unstable; stop before it writes garbage.
@@ -406,6 +405,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
                 << " s, stability limit " << stableTimeStep(freq_.omegaMax) << " s";
             throw InstabilityError(msg.str());
         }
+        trackPeak(p.stress, driveNow());  // a record that passed the check: an unstable one is no peak
         // The balance is measured against the largest energy in play, not the
         // work alone: energy that appears without work (a drive that jumps
         // past the bars' elastic branch in a step, before any force did work)

@@ -141,7 +141,10 @@ public:
     std::int64_t stepCount() const { return step_; }
     int recordEvery() const { return recordEvery_; }
     int threads() const { return threads_; }  // OpenMP threads of the run (threadsFor, Parallel.hpp)
-    double minFractureEnergy() const { return mat_.GfMean * meas_.area; }  // U_min
+    // U_min = E[G_f] x the ligament's area: the energy of the cheapest plane crack (0: no ligament declared).
+    double minFractureEnergy() const { return mat_.GfMean * meas_.ligament; }
+    // The run's summary so far, as of its last record (an interrupted run's peak and events).
+    const RunSummary& summarySoFar() const { return progress_.summary; }
 
 private:
     // The drive's displacement U at t_n and at t_n-1.

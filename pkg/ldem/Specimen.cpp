@@ -48,6 +48,7 @@ void validate(const Specimen& s) {
     if (m.dim < 0 || m.dim > 2) fail("the measured direction must be 0, 1 or 2");
     if (!(m.area > 0) || !std::isfinite(m.area)) fail("the measured area must be positive");
     if (!(m.gaugeLength > 0) || !std::isfinite(m.gaugeLength)) fail("the gauge length must be positive");
+    if (!(m.ligament >= 0) || !std::isfinite(m.ligament)) fail("the ligament must be positive (or 0: none)");
     if (!(m.meanDriveWeight != 0) || !std::isfinite(m.meanDriveWeight))
         fail("the loaded group is not driven along the measured direction (mean drive weight 0)");
     for (const Probe& q : m.probes) {
@@ -161,6 +162,7 @@ Specimen cubeTestSpecimen(int nx, int ny, int nz, double L0, const Material& m, 
             for (int i = 0; i < nx; ++i) kept += lat.present(i, j, -lat.kOffset);
         ms.area = kept * L0 * L0;
     }
+    ms.ligament = ms.area;  // the cube breaks across its section
     ms.gaugeLength = nz * lat.L0;
     ms.meanDriveWeight = weightSum / faceNodes;
     return s;

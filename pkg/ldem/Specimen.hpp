@@ -47,6 +47,8 @@ struct Measures {
                                 // mean strain = U(t) x |meanDriveWeight| / gaugeLength
     std::vector<Probe> probes;  // extra displacements in every record
     int control = -1;           // the probe a servo holds to LoadingParams::openingRate (-1: none; Loading.hpp)
+    double ligament = 0;        // [m^2]: the section the specimen is meant to break through (a notched
+                                // beam's b (D - a0), a cube's face); U_min = E[G_f] x ligament; 0: none declared
     // The specimen is split when no chain of intact bars joins support and loaded.
     double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
 };

@@ -10,7 +10,7 @@ import sys
 
 
 from .bench import cmd_bench
-from .rerun import RERUN_KEYS, cmd_rerun  # noqa: F401 (RERUN_KEYS: what a rerun compares)
+from .rerun import RERUN_SKIPS, cmd_rerun  # noqa: F401 (RERUN_SKIPS: the fields a rerun does not compare)
 from .helptext import HelpFormatter
 from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
 from .signals import Terminated, terminate_on_sigterm
@@ -49,11 +49,12 @@ def build_parser() -> argparse.ArgumentParser:
     b.set_defaults(func=cmd_bench)
 
     r = sub.add_parser("rerun", help="run a result's folder again from its summary.json and compare",
-                       description="Reads DIR/summary.json (its parameters and provenance), runs the same test into "
-                                   "--out (default DIR/rerun) and compares the curve and the summary's numbers: exit 0 "
-                                   "if they are identical, 1 if not.",
+                       description="Reads DIR/summary.json (its parameters and provenance), runs the same test (a "
+                                   "cube, a study's case or an ldem run specimen) into --out (default DIR/rerun) and "
+                                   "compares the curve and every field of the summary but when, where and how fast "
+                                   "it ran (it names them): exit 0 if they are identical, 1 if not.",
                        formatter_class=HelpFormatter)
-    r.add_argument("dir", metavar="DIR", help="a folder written by ldem cube (or a study's case folder)")
+    r.add_argument("dir", metavar="DIR", help="a folder written by ldem cube or ldem run (or a study's case folder)")
     r.add_argument("--out", default=None, metavar="OUT", help="where the rerun writes (default: DIR/rerun)")
     r.add_argument("--no-progress", action="store_true", help="no progress bar")
     r.set_defaults(func=cmd_rerun)

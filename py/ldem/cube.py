@@ -57,6 +57,10 @@ class _CubeTestMethods:
     def describe(self) -> str:
         return f"{self.size:g} m cube, {self.load}, seed {self.seed}"
 
+    def axis_labels(self) -> tuple:
+        """(strain, stress) labels: the cube's mean strain and normal stress."""
+        return STRAIN_LABEL, STRESS_LABEL
+
     # -- running ------------------------------------------------------------
     def run(self, observers=(), simulation=None, previous_rows=()) -> "CubeResult":
         """Runs the test to separation (or load loss, see stop_at; or the final
@@ -157,6 +161,23 @@ CubeTest = dataclasses.make_dataclass(
                "__module__": __name__})
 
 
+# What a cube's measures are: the words of its figures' axes, its terminal
+# lines and summary.json's "labels" (a specimen says its own: measure.strain_label, stress_label).
+STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
+
+
+def labels(test) -> dict:
+    """{"strain": ..., "stress": ...}: test's axis labels, "name [unit]" (a cube's, where a test gives none)."""
+    own = test.axis_labels() if hasattr(test, "axis_labels") else ("", "")
+    return {"strain": own[0] or STRAIN_LABEL, "stress": own[1] or STRESS_LABEL}
+
+
+def label_words(label: str) -> tuple:
+    """(name, unit) of a label "name [unit]": ("deflection/D", "-"); ("", ...) parts absent stay ""."""
+    name, _, unit = label.partition(" [")
+    return name.strip(), unit.rstrip("]").strip()
+
+
 # The curve's columns, in curve.csv's order; stresses in MPa (the core's are Pa).
 CURVE_COLUMNS = ["step", "time_s", "mean_strain", "stress_MPa", "stress_top_MPa", "external_work_J", "kinetic_J",
                  "elastic_J", "fracture_J", "damping_J", "damaged_bars", "broken_bars"]
@@ -203,7 +224,7 @@ def _event(e) -> dict:
 
 
 def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
-    u_min = sim.min_fracture_energy
+    u_min = sim.min_fracture_energy if sim.min_fracture_energy > 0 else None  # None: no ligament declared
     s = {"status": status}
     if summary is not None:
         sep = summary.separation
@@ -214,14 +235,14 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "edge_strain_at_peak": summary.edge_strain_at_peak,
             "separated": sep.reached,
             "U_num_J": u_num,
-            "U_ratio": None if u_num is None else u_num / u_min,
+            "U_ratio": None if u_num is None or u_min is None else u_num / u_min,
             "load_loss": _event(summary.load_loss),
             "separation": _event(sep),
             # stop_at "converged" on a specimen that hinges: the energy at the stop, never U_num.
             "converged": _event(summary.converged),
             "U_final_J": summary.converged.fracture if summary.converged.reached else None,
             "fracture_energy_J": summary.fracture_energy,
-            "min_fracture_energy_J": u_min,
+            "min_fracture_energy_J": u_min,  # E[G_f] x the ligament (Simulation::minFractureEnergy)
             # The cheapest cut needs the whole lattice on one process: not under mpirun.
             "U_mincut_J": None if _core.mpi_launched() else cheapest_cut(sim),
             "energy_balance_error": summary.energy_balance_error,
@@ -229,11 +250,11 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "quasi_static": quasi_static(summary),
             "stop_reason": summary.stop_reason,
         })
-    elif len(curve["stress_MPa"]):  # failed run: what the rows recorded so far say
-        k = int(np.argmax(curve["stress_MPa"]))
-        s.update({"peak_stress_MPa": float(curve["stress_MPa"][k]),
-                  "strain_at_peak": float(curve["mean_strain"][k]),
-                  "fracture_energy_J": float(curve["fracture_J"][-1]), "min_fracture_energy_J": u_min})
+    elif len(curve["stress_MPa"]):  # failed run: the core's summary as of its last record (the tracked peak,
+        so_far = sim.summary_so_far  # exact: curve rows restored from curve.csv keep only 10 digits)
+        s.update({"peak_stress_MPa": so_far.peak_stress * 1e-6, "strain_at_peak": so_far.strain_at_peak,
+                  "edge_strain_at_peak": so_far.edge_strain_at_peak, "fracture_energy_J": so_far.fracture_energy,
+                  "min_fracture_energy_J": u_min})
     s.update({
         "clamped_bars": sim.clamped_bars,
         "n_nodes": sim.total_nodes,  # of the whole lattice, also when split over MPI ranks
@@ -249,6 +270,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "threads": sim.threads,  # those the run used (threadsFor, Parallel.hpp)
         "mpi_ranks": _core.mpi_ranks(),  # processes the lattice was split over (mpirun -np)
         "wall_s": wall_s,
+        "labels": labels(test),  # what stress and strain (peak_stress_MPa, strain_at_peak, the curve) are here
         "provenance": provenance(),
         "parameters": test.parameters(),
     })

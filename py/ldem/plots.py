@@ -14,11 +14,11 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
+from .cube import STRAIN_LABEL, STRESS_LABEL, labels as test_labels  # noqa: E402, F401  (the report's axes too)
 
 STYLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ldem.mplstyle")
 plt.style.use(STYLE)
 FIGURE_FORMATS = ("png", "pdf", "svg")
-STRAIN_LABEL, STRESS_LABEL = "mean strain [-]", "normal stress [MPa]"
 
 
 def save(fig, path: str) -> None:
@@ -45,8 +45,8 @@ SOFTENED = 0.1  # without a load loss in reach, the softening ends where the str
 def axis_labels(test) -> tuple:
     """(strain, stress) axis labels: a specimen's own quantities (its measure.strain_label
     and stress_label: a beam's deflection/D and F/(bD)), else a cube's mean strain and normal stress."""
-    own = test.axis_labels() if hasattr(test, "axis_labels") else ("", "")
-    return own[0] or STRAIN_LABEL, own[1] or STRESS_LABEL
+    words = test_labels(test)
+    return words["strain"], words["stress"]
 
 
 def softening_end(curve, summary):

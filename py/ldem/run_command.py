@@ -132,28 +132,35 @@ def _snapshots(args) -> list:
 
 
 def report_run(result, args, edge: bool = False) -> int:
-    """The lines a run prints (ldem cube, ldem run); exit 1 on an energy error."""
+    """The lines a run prints (ldem cube, ldem run), in the specimen's own words (summary.json's labels: a
+    cube's mean strain and normal stress, a beam's deflection/D and F/(bD)); exit 1 on an energy error."""
+    from .cube import label_words
+
     s, test = result.summary, result.test
-    print(f"peak stress {s['peak_stress_MPa']:.4f} MPa at mean strain {s['strain_at_peak']:.4e}"
+    (strain, _), (stress, unit) = label_words(s["labels"]["strain"]), label_words(s["labels"]["stress"])
+    u_min = s["min_fracture_energy_J"]  # None: the specimen declares no ligament
+    of_min = lambda u: "" if u_min is None else f" ({u / u_min:.3f} U_min)"  # noqa: E731
+    print(f"peak {stress} {s['peak_stress_MPa']:.4f} {unit or 'MPa'} at {strain} {s['strain_at_peak']:.4e}"
           + (f" (most-pulled edge {s['edge_strain_at_peak']:.4e})" if edge else ""))
     loss, sep = s["load_loss"], s["separation"]
     if loss:
-        print(f"load lost at mean strain {loss['mean_strain']:.4e}: fracture energy {loss['fracture_energy_J']:.4g} J "
-              f"({loss['fracture_energy_J'] / s['min_fracture_energy_J']:.3f} U_min)")
+        print(f"load lost at {strain} {loss['mean_strain']:.4e}: fracture energy {loss['fracture_energy_J']:.4g} J"
+              + of_min(loss["fracture_energy_J"]))
     if sep:
-        cut = "" if s["U_mincut_J"] is None else \
-            f", cheapest cut {s['U_mincut_J'] / s['min_fracture_energy_J']:.3f} U_min"
-        print(f"separated at mean strain {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J, "
-              f"U_num/U_min {s['U_ratio']:.3f} (U_min {s['min_fracture_energy_J']:.4g} J{cut})")
+        cut = "" if s["U_mincut_J"] is None or u_min is None else \
+            f", cheapest cut {s['U_mincut_J'] / u_min:.3f} U_min"
+        ratio = "" if u_min is None else f", U_num/U_min {s['U_ratio']:.3f} (U_min {u_min:.4g} J{cut})"
+        print(f"separated at {strain} {sep['mean_strain']:.4e}: U_num {s['U_num_J']:.4g} J{ratio}")
     elif (conv := s.get("converged")):
-        print(f"converged at mean strain {conv['mean_strain']:.4e} (U grew by less than "
+        print(f"converged at {strain} {conv['mean_strain']:.4e} (U grew by less than "
               f"{test.converged_growth:.0%} over the last doubling of the strain): U_final "
-              f"{s['U_final_J']:.4g} J, U_final/U_min {s['U_final_J'] / s['min_fracture_energy_J']:.3f} (not U_num: "
-              "it did not separate)")
-    elif test.stop_at in ("separation", "converged"):
+              f"{s['U_final_J']:.4g} J{of_min(s['U_final_J'])} (not U_num: it did not separate)")
+    elif s["stop_reason"] in ("final_strain", "stopped"):
         stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
-        print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
-              f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
+        aim = test.stop_at in ("separation", "converged")  # a run meant to separate: its energy is not U_num
+        print(f"stopped at {stop} ({strain} {result.curve['mean_strain'][-1]:.4e})" + " before separation" * aim
+              + f": the fracture energy at the end, {s['fracture_energy_J']:.4g} J{of_min(s['fracture_energy_J'])}"
+              + ", is not U_num (the energy at separation)" * aim)
     threads = f"{s['threads']} thread{'s' * (s['threads'] != 1)}"  # the run's (threads = 0: chosen, Parallel.hpp)
     where = f"{s['mpi_ranks']} MPI ranks of {threads}" if s.get("mpi_ranks", 1) > 1 else threads
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "

@@ -12,7 +12,7 @@ The file (examples/ has one per classic test; docs/specimens.md):
                  (several selectors: the nodes all of them select) | union = ["a", "b"]
                  fix = ["x", "z"] (held at 0), drive = {z = -1.0} (u_z = -1 x U(t)), linear = "x"
                  (the drive's weight grows linearly from 0 to its value across the group along x)
-    [measure]    support, loaded (group names), area [m^2], gauge_length [m],
+    [measure]    support, loaded (group names), area [m^2], gauge_length [m], ligament [m^2] (U_min = E[G_f] x it),
                  probes = {cmod = {a = [..], b = [..], direction = "x"}},
                  control = "cmod" (a servo holds the probe to loading.opening_rate [m/s]),
                  stress_label, strain_label (the figures' axes: "F/(bD) [MPa]", "deflection/D [-]")
@@ -41,7 +41,8 @@ _PARAMS = {p["name"]: p for p in PARAMETERS}
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
-_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "probes", "control", "stress_label", "strain_label"}
+_MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "ligament", "probes", "control", "stress_label",
+                 "strain_label"}
 
 
 def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> np.ndarray:
@@ -173,6 +174,7 @@ class Build:
         out["mean_drive_weight"] = float(weight[along].sum() / len(self.groups[out["loaded"]]))
         out["area"] = number(m.get("area"), where, "measure.area")
         out["gauge_length"] = number(m.get("gauge_length"), where, "measure.gauge_length")
+        out["ligament"] = number(m["ligament"], where, "measure.ligament") if "ligament" in m else 0.0  # 0: no U_min
         for k in ("stress_label", "strain_label"):  # what stress and strain are for this specimen
             if not isinstance(m.get(k, ""), str):
                 raise where(f"measure.{k}", f"must be a text, an axis label (got {m[k]!r})")
@@ -213,20 +215,21 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     """Every CubeTest parameter of the material, loading and run groups: the
     file's values over the defaults, then the overrides (--set)."""
     out = {p["name"]: p["default"] for p in PARAMETERS}
-    given = [(section, k, v) for section in ("material", "loading", "run")
+    given = [(section, k, v, False) for section in ("material", "loading", "run")
              for k, v in (data.get(section) or {}).items()]
-    given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v) for k, v in overrides.items()]
-    for section, k, v in given:
-        key = f"{section}.{k}"
+    given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v, True) for k, v in overrides.items()]
+    def blame(section: str, k: str, message: str, overridden: bool) -> SpecimenError:  # --set's by its option
+        return SpecimenError(f"--set {k}: {message}") if overridden else where(f"{section}.{k}", message)
+    for section, k, v, overridden in given:
         if k not in _PARAMS or k in _CUBE_ONLY or _PARAMS[k]["group"] != section:
-            raise where(key, "not a parameter of this section" if k in _PARAMS and k not in _CUBE_ONLY else
+            raise blame(section, k, "not a parameter of this section" if k in _PARAMS and k not in _CUBE_ONLY else
                         ("a cube-test parameter: a specimen says it with its groups" if k in _CUBE_ONLY
-                         else "unknown parameter (see ldem cube --help)"))
+                         else "unknown parameter (see ldem cube --help)"), overridden)
         kind = _PARAMS[k]["kind"]
         ok = isinstance(v, str) if kind == "choice" else (isinstance(v, (int, float)) and not isinstance(v, bool))
         if not ok or (kind == "int" and not isinstance(v, int)):
-            raise where(key, f"must be {'one of ' + ', '.join(_PARAMS[k]['choices']) if kind == 'choice' else kind} "
-                             f"(got {v!r})")
+            expected = "one of " + ", ".join(_PARAMS[k]["choices"]) if kind == "choice" else kind
+            raise blame(section, k, f"must be {expected} (got {v!r})", overridden)
         out[k] = float(v) if kind == "float" else v
     p = _core.CubeTestParams()
     for k, v in out.items():
@@ -235,7 +238,7 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
         p.material.validate(), p.loading.validate(), p.run.validate()
     except ValueError as e:
         name = str(e).split()[0]
-        raise where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(e)) from None
+        raise blame(_PARAMS.get(name, {"group": "parameters"})["group"], name, str(e), name in overrides) from None
     return out
 
 

@@ -365,6 +365,7 @@ PYBIND11_MODULE(_core, m) {
                  ms.dim = measures["dim"].cast<int>();
                  ms.area = measures["area"].cast<double>();
                  ms.gaugeLength = measures["gauge_length"].cast<double>();
+                 if (measures.contains("ligament")) ms.ligament = measures["ligament"].cast<double>();
                  ms.meanDriveWeight = measures["mean_drive_weight"].cast<double>();
                  if (measures.contains("probes"))
                      for (const auto& q : measures["probes"].cast<py::list>()) {
@@ -384,8 +385,9 @@ PYBIND11_MODULE(_core, m) {
              py::arg("material"), py::arg("loading"), py::arg("run"),
              "any specimen: the nx x ny x nz lattice of the modules of module_mask (as build_lattice), named node "
              "groups, prescribed DOFs u[node][dim] = weight x U(t), and measures {support, loaded, dim, area, "
-             "gauge_length, mean_drive_weight, probes: [(name, a, b, dim)], control: index of the probe held to "
-             "opening_rate, or -1}, node ids of the whole lattice (ldem.specimen builds them from a file)")
+             "gauge_length, ligament (0: none), mean_drive_weight, probes: [(name, a, b, dim)], control: index of "
+             "the probe held to opening_rate, or -1}, node ids of the whole lattice (ldem.specimen builds them from "
+             "a file)")
         .def(
             "run",
             [](Simulation& s, py::object callback) {
@@ -441,7 +443,10 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("threads", &Simulation::threads,
                                "the OpenMP threads of the run: threads if set, else OMP_NUM_THREADS, else as many as "
                                "the lattice can use and the machine has free (Parallel.hpp, threadsFor)")
-        .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy)
+        .def_property_readonly("min_fracture_energy", &Simulation::minFractureEnergy,
+                               "U_min = E[G_f] x the ligament's area [J] (0: the specimen declares no ligament)")
+        .def_property_readonly("summary_so_far", &Simulation::summarySoFar,
+                               "the run's summary as of its last record (an interrupted run's peak and events)")
         .def_property_readonly("area", [](const Simulation& s) { return s.measures().area; },
                                "area the reactions are divided by [m^2]")
         .def_property_readonly("gauge_length", [](const Simulation& s) { return s.measures().gaugeLength; },
@@ -452,6 +457,7 @@ PYBIND11_MODULE(_core, m) {
                                    py::dict d;
                                    d["support"] = m.support, d["loaded"] = m.loaded, d["dim"] = m.dim;
                                    d["area"] = m.area, d["gauge_length"] = m.gaugeLength;
+                                   d["ligament"] = m.ligament;
                                    d["mean_drive_weight"] = m.meanDriveWeight;
                                    d["sense"] = m.sense();  // +1 pulled, -1 pushed (Measures::sense)
                                    py::list probes;

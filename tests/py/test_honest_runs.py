@@ -100,7 +100,8 @@ def test_threads_0_honours_omp_num_threads(tmp_path):
 def _small_cube_file(tmp_path, edit=lambda t: t):
     text = open(os.path.join(ROOT, "examples", "cube_uniform.toml")).read()
     text = (text.replace("size = [0.12, 0.12, 0.12]", "size = [0.04, 0.04, 0.04]")
-            .replace("area = 0.0144 ", "area = 0.0016 ").replace("gauge_length = 0.12 ", "gauge_length = 0.04 "))
+            .replace("area = 0.0144 ", "area = 0.0016 ").replace("gauge_length = 0.12 ", "gauge_length = 0.04 ")
+            .replace("ligament = 0.0144 ", "ligament = 0.0016 "))
     path = tmp_path / "small.toml"
     path.write_text(edit(text))
     return str(path)
@@ -154,6 +155,9 @@ def test_a_killed_run_continues_bit_for_bit(cli, tmp_path, signum, code):
     assert r.returncode == 0, r.stderr
     assert (cut / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
     assert json.loads((cut / "summary.json").read_text())["status"] == "done"
+    from ldem.rerun import RESTART_SKIPS, differences  # issue 40 item 4: every field of the summary too
+
+    assert differences(*(json.loads((d / "summary.json").read_text()) for d in (whole, cut)), RESTART_SKIPS) == []
     assert not (cut / "checkpoint.npz").exists()
     r = cli("cube", "--restart", str(cut), "--no-progress", "--no-plots")
     assert r.returncode == 0 and r.stdout.strip() == f"{cut} is a finished run (summary.json: done): nothing to " \

@@ -37,6 +37,7 @@ def test_the_cube_files_are_ldem_cube(load):
     # The prescribed DOFs come in another order: the external work is summed in another order.
     np.testing.assert_allclose(spec.curve["external_work_J"], cube.curve["external_work_J"], rtol=1e-12, atol=1e-15)
     assert spec.summary["peak_stress_MPa"] == cube.summary["peak_stress_MPa"]
+    assert spec.summary["min_fracture_energy_J"] == cube.summary["min_fracture_energy_J"]  # the file's ligament
     assert spec.summary["stop_reason"] == cube.summary["stop_reason"]
     assert (spec.summary["load_loss"] or {}).get("step") == (cube.summary["load_loss"] or {}).get("step")
 
@@ -235,6 +236,9 @@ def test_each_example_runs(cli, tmp_path, path):
     s = json.load(open(out / "summary.json"))
     assert s["status"] == "done" and s["peak_stress_MPa"] > 0 and s["energy_balance_error"] < 0.01
     assert s["parameters"]["description"]["title"] in open(path).read()
+    declared = s["parameters"]["description"]["measure"].get("ligament")  # U_min = E[G_f] x ligament, or none
+    gf = s["parameters"]["parameters"]["Gf_mean"]
+    assert s["min_fracture_energy_J"] == (None if declared is None else pytest.approx(gf * declared, rel=1e-15))
     assert os.path.getsize(out / "cracks.png") > 0 and os.path.getsize(out / "bars.pvd") > 0
 
 

@@ -8,6 +8,7 @@ import os
 import numpy as np
 
 from .. import parallel
+from ..cube import label_words, labels
 from ..slicing import central_slice
 from .files import atomic
 from .registry import register_writer
@@ -36,8 +37,9 @@ class Figures:
             plots.energy_figure(result, path("energies"))
         piece = central_slice(result.sim)
         if piece is not None:
+            strain = label_words(labels(result.test)["strain"])[0]  # the specimen's own (a beam's deflection/D)
             plots.crack_figure_from_slice(*piece, path("cracks"), title=f"{result.test.describe()}\n"
-                                          f"mean strain {result.curve['mean_strain'][-1]:.2e}")
+                                          f"{strain} {result.curve['mean_strain'][-1]:.2e}")
 
 
 def write_slice(path: str, segments, states) -> None:

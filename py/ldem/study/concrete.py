@@ -37,7 +37,7 @@ def prism(material: dict, L0: float, seed: int, stop_at: str = "load_loss") -> S
         "title": f"direct tension prism {w * 1e3:g} x {t * 1e3:g} x {h * 1e3:g} mm, eps_p {material['eps_p']:.4g}",
         "shape": {"kind": "box", "L0": L0, "size": [w, t, h]},
         "groups": {"bottom": {"face": "z-", "fix": ["x", "y", "z"]}, "top": {"face": "z+", "drive": {"z": 1.0}}},
-        "measure": {"support": "bottom", "loaded": "top", "area": AREA, "gauge_length": h,
+        "measure": {"support": "bottom", "loaded": "top", "area": AREA, "gauge_length": h, "ligament": AREA,
                     "probes": {"axial": {"a": [w / 2, t / 2, h / 4], "b": [w / 2, t / 2, 3 * h / 4], "direction": "z"},
                                "lateral": {"a": [0.0, t / 2, h / 2], "b": [w, t / 2, h / 2], "direction": "x"}}},
         "material": dict(material), "loading": {"strain_rate": PRISM_RATE},

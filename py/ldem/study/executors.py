@@ -94,7 +94,8 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
     def finished(i, summary):
         bar.step()
         log(f"  {case_name(tests[i])}: peak {summary['peak_stress_MPa']:.4f} MPa at {summary['strain_at_peak']:.4e}, "
-            + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("separated")
+            + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("U_ratio") is not None  # None: no U_min
+               else f"U_num {summary['U_num_J']:.4g} J" if summary.get("separated")
                else f"stopped ({summary.get('stop_reason', 'unknown')}) before separation")
             + (", ENERGY ERROR" if summary.get("energy_error") else "") + f", {summary['wall_s']:.1f} s")
 
