@@ -128,3 +128,38 @@ def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
     assert stop({"stress_MPa": 1.0, "stress_top_MPa": 1.0})
     assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.5})  # the platen still pushes
     assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.01}) is False
+
+
+class AffinePrism:
+    """A prism whose response is known in closed form: E_prism = 0.95 E_bars,
+    and a strength proportional to the bars' E and affine in eps_p,
+    f(E_bars, eps_p) = (E_bars / E) (A eps_p + B), as the procedure assumes
+    (calibrate: 'the strength scales with E eps_p'). Its exact calibration: E_bars = E / 0.95,
+    eps_p = (0.95 f_t - B) / A."""
+
+    def __init__(self, E, f_t):
+        self.E, self.A, self.B = E, 0.5 * E, 0.3 * f_t  # a third of the strength from B: the proportional step misses
+        self.calls = []
+
+    def __call__(self, material, L0, seeds, stop_at, log):
+        self.calls.append(dict(material))
+        k = material["E"] / self.E
+        return {"E": 0.95 * material["E"], "nu": material["nu"], "f_t": k * (self.A * material["eps_p"] + self.B)}
+
+
+@pytest.mark.direct
+def test_the_calibration_lands_on_the_exact_eps_p_of_a_known_prism(monkeypatch):
+    """On the closed-form prism the procedure's rounds (the proportional step,
+    then the secant, each at the prism's E scaled to the target) land on its
+    exact E and eps_p, to round-off: a 1 % error in eps_p fails by 1e6 times
+    the tolerance. The material returned is the one last measured."""
+    E, f_t = 37e9, 3.9e6
+    fake = AffinePrism(E, f_t)
+    monkeypatch.setattr(concrete, "measure", fake)
+    r = concrete.calibrate(E, 0.21, f_t, G_F=140.0, log=lambda s: None)
+    m = r["material"]
+    assert len(fake.calls) == 3  # the proportional step misses by more than TOLERANCE: the secant lands
+    assert m == fake.calls[-1]
+    assert m["E"] == pytest.approx(E / 0.95, rel=1e-12)
+    assert m["eps_p"] == pytest.approx((0.95 * f_t - fake.B) / fake.A, rel=1e-9)
+    assert r["measured"]["f_t"] == pytest.approx(f_t, rel=1e-9) and r["measured"]["E"] == pytest.approx(E, rel=1e-12)

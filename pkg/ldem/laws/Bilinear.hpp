@@ -47,6 +47,12 @@ inline double kinkArea(double Fp, double epsP, double sK, double epsK) {
     return 0.5 * Fp * epsP + 0.5 * (1 + sK) * Fp * (epsK - epsP);
 }
 
+// Area under the whole envelope: A(eps_k) + 1/2 s_k Fp (eps_r - eps_k) = W (1/2 Fp eps_p for
+// a perfectly brittle bar, eps_k = eps_r = eps_p).
+inline double envelopeArea(double Fp, double epsP, double sK, double epsK, double epsR) {
+    return kinkArea(Fp, epsP, sK, epsK) + 0.5 * sK * Fp * (epsR - epsK);
+}
+
 // The kink and the end of a bar of fracture area Af, energy GF, of which g GF
 // under the initial line, kink stress ratio sK (header comment).
 inline KinkStrains kinkStrains(double Af, double GF, double EA, double epsP, double L, double g, double sK) {
@@ -92,7 +98,7 @@ inline double updateDamage(double kappa, double eps) { return std::max(kappa, ep
 inline double bilinearDissipated(double kappa, double EA, double epsP, double sK, double epsK, double epsR, double L) {
     if (kappa <= epsP) return 0.0;
     const double Fp = EA * epsP;
-    if (kappa >= epsR) return L * (kinkArea(Fp, epsP, sK, epsK) + 0.5 * sK * Fp * (epsR - epsK));
+    if (kappa >= epsR) return L * envelopeArea(Fp, epsP, sK, epsK, epsR);
     const double F = Fp * envelopeOverPeak(kappa, epsP, sK, epsK, epsR);
     const double area = kappa <= epsK ? 0.5 * Fp * epsP + 0.5 * (Fp + F) * (kappa - epsP)
                                       : kinkArea(Fp, epsP, sK, epsK) + 0.5 * (sK * Fp + F) * (kappa - epsK);
@@ -178,9 +184,10 @@ public:
     double dissipated(std::int64_t b, double EA, double L, double eps) const {
         return bilinear::bilinearDissipated(bilinear::updateDamage(kappa[b], eps), EA, epsP, sK, epsK[b], epsR[b], L);
     }
-    // A_f G_F, or 1/2 L EA eps_p^2 for a bar clamped to perfectly brittle.
+    // A_f G_F, or 1/2 L EA eps_p^2 for a bar clamped to perfectly brittle: what
+    // the bar dissipates once broken (not D(eps_r), which is 0 where eps_r = eps_p).
     double ruptureEnergy(std::int64_t b, double EA, double L) const {
-        return bilinear::bilinearDissipated(epsR[b], EA, epsP, sK, epsK[b], epsR[b], L);
+        return L * bilinear::envelopeArea(EA * epsP, epsP, sK, epsK[b], epsR[b]);
     }
     DamageState damage(std::int64_t b, double eps = 0) const {
         return ldem::damageState(bilinear::updateDamage(kappa[b], eps), epsP, epsR[b]);
