@@ -61,7 +61,8 @@ def cmd_cube(args) -> int:
     elif args.extend is not None:
         raise ValueError("--extend goes with --restart DIR: the finished run to take further")
     test = cube_from_args(args)
-    test.params()  # every input checked before the warnings below and before any output
+    params = test.params()  # every input checked before the warnings below and before any output
+    warn_brittle(args.command, params.material, test.L0)
     from ._core import allowed_cores
 
     cores = allowed_cores()
@@ -76,6 +77,14 @@ def cmd_cube(args) -> int:
                       checkpoint_every=args.checkpoint_every, restart=bool(args.restart),
                       **_continuation(args))
     return report_run(result, args, edge=test.load == "triangular")
+
+
+def warn_brittle(command: str, material, L0: float) -> None:
+    """The warning when the bars of the mean G_f are perfectly brittle by construction (pkg/ldem/Relations.hpp)."""
+    from ._core import brittle_warning
+
+    if (why := brittle_warning(material, L0)):
+        print(f"ldem {command}: warning: {why}", file=sys.stderr)
 
 
 def _parameters_in(out: str, extend: bool) -> dict:
@@ -188,6 +197,7 @@ def cmd_run(args) -> int:
             raise ValueError("--extend goes with --restart: the finished run in --out to take further")
         overrides.update(final_strain=args.extend, stop_at="separation")
     test = SpecimenTest.from_file(args.file, overrides)
+    warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
     restart = f"ldem run {args.file} --out {args.out} --restart" + "".join(f" --set {s}" for s in args.set)
     if args.restart and args.extend is None and finished(args.out, restart):

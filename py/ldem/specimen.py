@@ -117,6 +117,10 @@ class Build:
         self.L0, self.n, self.mask = module_mask(data["shape"], where)
         self.params["L0"] = self.L0
         self.params["size"] = self.L0 * self.n[0]
+        try:  # the bounds that tie the parameters to L0 (pkg/ldem/Relations.hpp)
+            self.cpp_params().validate()
+        except ValueError as e:
+            raise _named(e, where) from None
         nodes = Nodes(self.n, self.L0, self.mask)
         self.groups, owner = {}, {}
         node, dim, weight = [], [], []
@@ -234,9 +238,14 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     try:
         p.material.validate(), p.loading.validate(), p.run.validate()
     except ValueError as e:
-        name = str(e).split()[0]
-        raise where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(e)) from None
+        raise _named(e, where) from None
     return out
+
+
+def _named(error: ValueError, where: Where) -> ValueError:
+    """A parameter's error (its message starts with the parameter's name) at its key in the file."""
+    name = str(error).split()[0]
+    return where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(error))
 
 
 class SpecimenTest:
