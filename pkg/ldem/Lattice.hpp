@@ -171,11 +171,10 @@ std::int64_t expectedBarCount(int nx, int ny, int nz);
 // is 63 B at 24^3 and 38 B at 48^3 (lattice, state, Lanczos); with a margin.
 constexpr std::int64_t kBytesPerBar = 100;
 std::int64_t memoryEstimate(int nx, int ny, int nz);
-// The memory a process may use: the machine's physical memory, or less under a
-// limit (ulimit -v or -d, the cgroup's memory.max); bytes 0 if unknown.
+// The memory a lattice must fit: the machine's physical memory; bytes 0 if unknown.
 struct MemoryLimit {
     double bytes;
-    const char* what;  // "this machine has", "this process may use (ulimit -v)", ...
+    const char* what;  // "this machine has"
 };
 MemoryLimit memoryLimit();
 // Why the slab of module layers [k0, k1) of an nx x ny x nz lattice (its box:
