@@ -165,12 +165,13 @@ def _within_limit(call):
 
 def _check_outcome(code, out, err, summary, what):
     assert "Traceback" not in err and "Traceback" not in out, (what, err)
-    assert code in (0, 2), (what, code, err)
+    s = json.loads(summary.read_text()) if summary.exists() else {}
+    # Left (issue 40): a run whose energy balance is off is flagged and exits 1, its summary saying so.
+    assert code in (0, 2) or (code == 1 and s.get("energy_error") is True), (what, code, err)
     if code == 2:
         errors = [line for line in err.strip().splitlines() if ": warning: " not in line]
         assert len(errors) == 1, (what, err)
     else:
-        s = json.loads(summary.read_text())
         assert s["status"] == "done" and math.isfinite(s["peak_stress_MPa"]) and s["peak_stress_MPa"] > 0, (what, s)
 
 
@@ -217,7 +218,8 @@ def test_every_specimen_key_with_extremes_ends_in_time(k, tmp_path, capsys):
         text = text.replace({"L0": "L0 = 0.02", "size": "size = [0.04, 0.04, 0.04]"}[key], f"{key} = {value}")
     for p in rng.sample(_SPECIMEN_PARAMETERS, rng.randint(1, 3)):
         value = _value(rng, p)
-        if p["kind"] == "int" and _is_number(value) and float(value) == int(float(value)) and "e" not in value:
+        if p["kind"] == "int" and _is_number(value) and math.isfinite(float(value)) and "e" not in value \
+                and float(value) == int(float(value)):
             value = str(int(float(value)))
         line = f"{p['name']} = {_toml(value)}"
         if p["name"] in ("strain_rate", "stop_at", "final_strain"):  # the base file's own line, replaced
