@@ -133,8 +133,8 @@
 // The final-strain stop (dynamics/FinalStrainStop.hpp).
 #define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
     X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(),                                      \
-      "stop at this mean strain if the event has not come; a run that reaches it before any bar has left its "  \
-      "elastic branch is refused (exit 2): it can never reach the peak")
+      "stop at this mean strain if the event has not come; one before the first record is refused (exit 2): "\
+      "it can never reach the peak")
 
 // The load-loss detector (dynamics/LoadLoss.hpp).
 #define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \

@@ -372,6 +372,9 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     if (!g.started) {
         refuseDriveJump(load_.strainRate, dt_, mat_.epsP);
         refuseDriveCrawl(load_.strainRate, dt_, mat_.epsP);
+        const double firstRecord = meanStrainOf(drive().displacement(recordEvery_ * dt_));
+        for (const StopRules& r : stops_)
+            if (const auto* f = std::get_if<FinalStrainStop>(&r)) f->refuseBeforeFirstRecord(firstRecord);
         g = RunProgress();
         g.summary.driveStepOverEpsP = driveStep(load_.strainRate, dt_, mat_.epsP);
         g.started = true;

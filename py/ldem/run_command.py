@@ -163,6 +163,9 @@ def report_run(result, args, edge: bool = False) -> int:
         stop = "the final strain" if s["stop_reason"] == "final_strain" else "an observer's request"
         print(f"stopped at {stop} (mean strain {result.curve['mean_strain'][-1]:.4e}) before separation: the "
               f"fracture energy at the end, {s['fracture_energy_J']:.4g} J, is not U_num")
+        if result.curve["damaged_bars"][-1] + result.curve["broken_bars"][-1] == 0:
+            print("no bar left its elastic branch: the peak lies beyond the final strain (the peak above is the "
+                  "last record's)")
     threads = f"{s['threads']} thread{'s' * (s['threads'] != 1)}"  # the run's (threads = 0: chosen, Parallel.hpp)
     where = f"{s['mpi_ranks']} MPI ranks of {threads}" if s.get("mpi_ranks", 1) > 1 else threads
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "

@@ -82,7 +82,7 @@ BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 
     (["--Gf-mean", "1e6"], "Gf_mean 1e+06 N/m gives a bar the limit strain eps_r = 2 c_a G_f / (E phi eps_p L0) = "
                            "15.7, above 1"),
     (["--ramp-time", "1e9"], "ramp_time 1e+09 s is above eps_p / strain_rate = 0.00315 s"),
-    (["--final-strain", "1e-9"], "before any bar left its elastic branch: it can never reach the peak"),
+    (["--final-strain", "1e-9"], "comes before the first record (at mean strain"),
     (["--strain-rate", "1e-9"], "steps of 2.15e-06 s to strain eps_p: more than 1000000 before any bar can crack"),
 ])
 def test_absurd_inputs_are_refused_with_their_rule(cli, tmp_path, args, message):
