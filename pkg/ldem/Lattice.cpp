@@ -4,6 +4,7 @@
 
 #include "ldem/Interrupt.hpp"
 
+#include <iomanip>
 #include <sstream>
 
 #include <algorithm>
@@ -148,17 +149,44 @@ std::array<std::vector<double>, 3> nodePositions(const Lattice& lat) {
 
 std::int64_t memoryEstimate(int nx, int ny, int nz) { return kBytesPerBar * expectedBarCount(nx, ny, nz); }
 
-void checkMemory(int nx, int ny, int nz) {
+MemoryLimit memoryLimit() {
+    // The machine's, not a process limit's (ulimit -v): the estimate's margin would refuse lattices that run under
+    // one (dev/mpi_memory_limit.sh: 2 ranks of 82 MB under 130 MB); there an allocation that fails is one line, exit 2.
     const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    if (pages <= 0 || pageSize <= 0) return;  // unknown: let the allocation decide
-    const double need = double(memoryEstimate(nx, ny, nz)), have = double(pages) * double(pageSize);
-    if (need > have) {
-        std::ostringstream msg;
-        msg.precision(3);
-        msg << "a lattice of " << nx << " x " << ny << " x " << nz << " modules (" << expectedBarCount(nx, ny, nz)
-            << " bars) needs about " << need / 1e9 << " GB; this machine has " << have / 1e9 << " GB";
-        throw std::invalid_argument(msg.str());
+    return {pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0, "this machine has"};
+}
+
+std::string latticeMisfit(int nx, int ny, int nz, int k0, int k1, const MemoryLimit& have) {
+    const int kLo = std::max(k0 - 1, 0), kHi = std::min(k1 + 1, nz);  // the box: owned layers and halos
+    const std::int64_t bars = expectedBarCount(nx, ny, kHi - kLo);
+    const double need = double(memoryEstimate(nx, ny, kHi - kLo));
+    auto gigabytes = [](double bytes) {  // 3 digits, and no exponent: "0.25", "25.3", "1400"
+        std::ostringstream g;
+        if (bytes >= 1e11) g << std::fixed << std::setprecision(0);
+        else g << std::setprecision(3);
+        g << bytes / 1e9 << " GB";
+        return g.str();
+    };
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "a lattice of " << nx << " x " << ny << " x " << kHi - kLo << " modules (" << bars
+        << " bars) needs about " << gigabytes(need);
+    if (have.bytes > 0 && need > have.bytes) {
+        msg << "; " << have.what << " " << gigabytes(have.bytes);
+        return msg.str();
     }
+    // It fits in memory: only the node ids keep it from one process, and ranks on this machine can hold it.
+    if (bars > std::int64_t(INT32_MAX)) {
+        msg << ": too many for the 32-bit node ids of one process; split it over MPI ranks (mpirun -np P, P at most "
+            << nz << ", the module layers)";
+        return msg.str();
+    }
+    return "";
+}
+
+void checkFits(int nx, int ny, int nz, int k0, int k1) {
+    if (const std::string why = latticeMisfit(nx, ny, nz, k0, k1, memoryLimit()); !why.empty())
+        throw std::invalid_argument(why);
 }
 
 Lattice buildCubicLattice(int nx, int ny, int nz, double L0, const Material& m) {
@@ -185,11 +213,8 @@ Lattice buildSlab(int nx, int ny, int nz, double L0, const Material& m, const st
         throw std::invalid_argument("the module mask keeps no module");
     if (k0 < 0 || k1 > nz || k0 >= k1)
         throw std::invalid_argument("a slab owns module layers [k0, k1) with 0 <= k0 < k1 <= nz");
+    checkFits(nx, ny, nz, k0, k1);  // the box's: an upper bound for a masked lattice
     const int kLo = std::max(k0 - 1, 0), kHi = std::min(k1 + 1, nz);  // the box: owned layers and halos
-    if (expectedBarCount(nx, ny, kHi - kLo) > std::int64_t(INT32_MAX))
-        throw std::invalid_argument("lattice too large for 32-bit node ids in one process: split it over more "
-                                    "MPI ranks");
-    checkMemory(nx, ny, kHi - kLo);  // the box's: an upper bound for a masked lattice
 
     Lattice lat;
     lat.nx = nx, lat.ny = ny, lat.nz = kHi - kLo, lat.L0 = L0;

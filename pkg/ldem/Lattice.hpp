@@ -32,6 +32,7 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -170,9 +171,20 @@ std::int64_t expectedBarCount(int nx, int ny, int nz);
 // is 63 B at 24^3 and 38 B at 48^3 (lattice, state, Lanczos); with a margin.
 constexpr std::int64_t kBytesPerBar = 100;
 std::int64_t memoryEstimate(int nx, int ny, int nz);
-// Throws std::invalid_argument, before anything is allocated, if the estimate
-// is above the machine's physical memory.
-void checkMemory(int nx, int ny, int nz);
+// The memory a lattice must fit: the machine's physical memory; bytes 0 if unknown.
+struct MemoryLimit {
+    double bytes;
+    const char* what;  // "this machine has"
+};
+MemoryLimit memoryLimit();
+// Why the slab of module layers [k0, k1) of an nx x ny x nz lattice (its box:
+// with a halo layer each side) does not fit one process of memory `have`:
+// its estimate above it, or, only when it fits, node ids past 32 bits (then
+// MPI ranks on this machine could hold it); "" if it fits.
+std::string latticeMisfit(int nx, int ny, int nz, int k0, int k1, const MemoryLimit& have);
+// Throws std::invalid_argument with latticeMisfit's message: every builder
+// calls it before anything is allocated (buildSlab; a specimen file's shape).
+void checkFits(int nx, int ny, int nz, int k0, int k1);
 
 // Builds the lattice of nx x ny x nz modules of side L0 with the bar areas of
 // the Nayfeh-Hefzy equivalence for material m and lumped masses rho L0^3

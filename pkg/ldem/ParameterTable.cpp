@@ -1,5 +1,7 @@
 #include "ldem/ParameterTable.hpp"
 
+#include "ldem/Relations.hpp"
+
 #include <algorithm>
 #include <climits>
 #include <cstdint>
@@ -150,6 +152,7 @@ void CubeTestParams::validate() const {
     material.validate();
     loading.validate();
     run.validate();
+    checkRelations(material, loading, run, geometry.L0);
 }
 
 }  // namespace ldem

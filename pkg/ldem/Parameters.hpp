@@ -35,7 +35,11 @@
     X(double, E, "E", 3.5e10, "Pa", Domain::openClosed(0, 1e14), "Young's modulus")                           \
     X(double, nu, "nu", 0.25, "", Domain::open(0, 0.5), "Poisson's ratio")                                    \
     X(double, rho, "rho", 2400.0, "kg/m^3", Domain::openClosed(0, 1e6), "density")                             \
-    X(double, GfMean, "Gf_mean", 100.0, "N/m", Domain::positive(), "mean specific fracture energy E[G_f]")     \
+    X(double, GfMean, "Gf_mean", 100.0, "N/m", Domain::positive(),                                            \
+      "mean specific fracture energy E[G_f]; a bar whose G_f is below E A eps_p^2 L / (2 A_f) (4.0 N/m for a "  \
+      "normal bar at the defaults) is perfectly brittle (eps_r < eps_p): a warning when the mean is, refused when "\
+      "every bar is; at most the G_f that makes eps_r of a normal bar 1 (6.4e4 N/m at the defaults): the "      \
+      "geometry is of small strains (pkg/ldem/Relations.hpp)")                                                 \
     X(double, GfCV, "Gf_cv", 1.0, "", Domain::closed(0, 10), "coefficient of variation of G_f (1 = 100%)")     \
     X(double, corrLength, "corr_length", 0.0, "m", Domain::atLeast(0),                                         \
       "correlation length of G_f (0: one draw per bar)")                                                      \
@@ -44,7 +48,9 @@
     X(double, epsP, "eps_p", 6.3e-5, "", Domain::openClosed(0, 1e-2),                                         \
       "critical strain of a bar (end of the elastic branch); at most 1%: concrete's is ~1e-4, and the lattice's "  \
       "geometry is that of small strains")                                                                     \
-    X(double, ca, "c_a", 0.1385, "", Domain::positive(), "fracture-area coefficient c_a")                    \
+    X(double, ca, "c_a", 0.1385, "", Domain::openClosed(0, 1),                                               \
+      "fracture-area coefficient c_a (A_f = c_a L0^2); at most 1: a bar's fracture area at most a module's face "\
+      "(0.1385 makes one crack across a module dissipate G_f L0^2); a small c_a makes bars brittle (Gf_mean)")   \
     X(SofteningLaw, law, "law", SofteningLaw::Hillerborg, "", Domain::choices({"hillerborg", "bilinear"}),     \
       "softening law of a bar: Hillerborg's triangle, or bilinear (kink_stress, Gf_ratio; fib MC2010)")         \
     X(double, kinkStress, "kink_stress", 0.2, "", Domain::openClosed(0, 1),                                   \
@@ -54,9 +60,12 @@
 
 // The drive's program, shared by every drive (dynamics/ConstantRateDrive.hpp).
 #define LDEM_DRIVE_PARAMETERS(X)                                                                             \
-    X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(), "vertical strain rate at the most-pulled edge")\
+    X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(),                                    \
+      "vertical strain rate at the most-pulled edge; the drive must move less than eps_p and more than 1e-6 "    \
+      "eps_p in one step (dynamics/QuasiStatic.hpp)")                                                           \
     X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                           \
-      "smooth start of the loading (0: two fundamental periods)")
+      "smooth start of the loading (0: two fundamental periods); at most eps_p / strain_rate: the ramp ends "   \
+      "before the mean strain reaches eps_p / 2, before any bar can crack")
 
 // The fixed speed-up after the load loss (dynamics/ConstantRateDrive.hpp; the adaptive drive's floor).
 #define LDEM_SPEEDUP_PARAMETERS(X)                                                                           \
@@ -123,7 +132,9 @@
 
 // The final-strain stop (dynamics/FinalStrainStop.hpp).
 #define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
-    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(), "stop at this mean strain if the event has not come")
+    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(),                                      \
+      "stop at this mean strain if the event has not come; one before the first record is refused (exit 2): "\
+      "it can never reach the peak")
 
 // The load-loss detector (dynamics/LoadLoss.hpp).
 #define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \

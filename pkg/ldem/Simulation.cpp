@@ -8,6 +8,7 @@
 #include "ldem/Interrupt.hpp"
 #include "ldem/Parallel.hpp"
 #include "ldem/RandomField.hpp"
+#include "ldem/Relations.hpp"
 #include "ldem/Separation.hpp"
 #include "ldem/Slab.hpp"
 
@@ -19,6 +20,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     load_.validate();
     run_.validate();
     validate(specimen);
+    checkRelations(mat_, load_, run_, specimen.lattice.L0);
     if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
         throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
     threads_ = threadsFor(run_.threads, specimen.lattice.numBars(), Comm::world().size());
@@ -75,6 +77,12 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
         std::int64_t nodes = 0;
         for (int m = lat_.ownBegin; m < lat_.ownEnd; ++m) nodes += lat_.layerNodes(m).second;
         totalBars_ = commOf(lat_).sum(owned.second - owned.first), totalNodes_ = commOf(lat_).sum(nodes);
+        if (clamped_ == totalBars_)  // no bar left to soften: a lattice of perfectly brittle bars is no model of concrete
+            throw std::invalid_argument("every bar is perfectly brittle: all " + std::to_string(totalBars_) +
+                                        " drew a G_f below E A eps_p^2 L / (2 A_f) (" +
+                                        formatNumber(brittleFractureEnergy(mat_, lat_.L0, false)) +
+                                        " N/m for a normal bar), with Gf_mean " + formatNumber(mat_.GfMean) +
+                                        " N/m: raise Gf_mean or lower c_a");
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
@@ -365,6 +373,10 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     RunProgress& g = progress_;
     if (!g.started) {
         refuseDriveJump(load_.strainRate, dt_, mat_.epsP);
+        refuseDriveCrawl(load_.strainRate, dt_, mat_.epsP);
+        const double firstRecord = meanStrainOf(drive().displacement(recordEvery_ * dt_));
+        for (const StopRules& r : stops_)
+            if (const auto* f = std::get_if<FinalStrainStop>(&r)) f->refuseBeforeFirstRecord(firstRecord);
         g = RunProgress();
         g.summary.driveStepOverEpsP = driveStep(load_.strainRate, dt_, mat_.epsP);
         g.started = true;

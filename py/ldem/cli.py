@@ -80,6 +80,10 @@ def main(argv=None) -> int:
         if rank == 0:
             print(f"ldem {args.command}: error: {e}", file=sys.stderr)
         return EXIT_BAD_INPUT
+    except MemoryError:  # past the estimate's check (pkg/ldem/Lattice.hpp, checkFits): the specimen did not fit after all
+        print(f"ldem {args.command}: error: out of memory building the specimen: it does not fit this process",
+              file=sys.stderr)
+        return EXIT_BAD_INPUT
     except _core.InstabilityError as e:
         print(f"ldem {args.command}: failed: {e} (rows so far are kept in the output folder)", file=sys.stderr)
         return EXIT_FAILED

@@ -117,7 +117,9 @@ KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
 
 
 def refuse_drive_jump(test, dt: float) -> None:
+    """Refuses a drive too fast (eps_p in one step) or too slow (a million steps to eps_p)."""
     _core.refuse_drive_jump(test.strain_rate, dt, test.eps_p)
+    _core.refuse_drive_crawl(test.strain_rate, dt, test.eps_p)
 
 
 def quasi_static(summary) -> dict:

@@ -4,7 +4,8 @@ defaults live in one place), the run with its files, the lines it prints, and
 a run taken further: --restart continues an interrupted run from its
 checkpoint, bit for bit; --restart with --extend STRAIN takes a finished run
 that did not separate (it stopped at its final strain or at load loss) from
-its final state on to a larger final strain, as if it had never stopped."""
+its final state on to a larger final strain, as if it had never stopped.
+Longer than 300 lines: both commands' options, run, printed lines and restart, one reading."""
 from __future__ import annotations
 
 import argparse
@@ -61,7 +62,8 @@ def cmd_cube(args) -> int:
     elif args.extend is not None:
         raise ValueError("--extend goes with --restart DIR: the finished run to take further")
     test = cube_from_args(args)
-    test.params()  # every input checked before the warnings below and before any output
+    params = test.params()  # every input checked before the warnings below and before any output
+    warn_brittle(args.command, params.material, test.L0)
     from ._core import allowed_cores
 
     cores = allowed_cores()
@@ -76,6 +78,14 @@ def cmd_cube(args) -> int:
                       checkpoint_every=args.checkpoint_every, restart=bool(args.restart),
                       **_continuation(args))
     return report_run(result, args, edge=test.load == "triangular")
+
+
+def warn_brittle(command: str, material, L0: float) -> None:
+    """The warning when the bars of the mean G_f are perfectly brittle by construction (pkg/ldem/Relations.hpp)."""
+    from ._core import brittle_warning
+
+    if (why := brittle_warning(material, L0)):
+        print(f"ldem {command}: warning: {why}", file=sys.stderr)
 
 
 def _parameters_in(out: str, extend: bool) -> dict:
@@ -161,6 +171,8 @@ def report_run(result, args, edge: bool = False) -> int:
         print(f"stopped at {stop} ({strain} {result.curve['mean_strain'][-1]:.4e})" + " before separation" * aim
               + f": the fracture energy at the end, {s['fracture_energy_J']:.4g} J{of_min(s['fracture_energy_J'])}"
               + ", is not U_num (the energy at separation)" * aim)
+        if result.curve["damaged_bars"][-1] + result.curve["broken_bars"][-1] == 0:  # the peak lies beyond
+            print("no bar left its elastic branch: the peak lies beyond the final strain (above: the last record's)")
     threads = f"{s['threads']} thread{'s' * (s['threads'] != 1)}"  # the run's (threads = 0: chosen, Parallel.hpp)
     where = f"{s['mpi_ranks']} MPI ranks of {threads}" if s.get("mpi_ranks", 1) > 1 else threads
     print(f"energy balance error {s['energy_balance_error']:.2e}, {s['steps']} steps of {s['dt_s']:.3e} s, "
@@ -195,6 +207,7 @@ def cmd_run(args) -> int:
             raise ValueError("--extend goes with --restart: the finished run in --out to take further")
         overrides.update(final_strain=args.extend, stop_at="separation")
     test = SpecimenTest.from_file(args.file, overrides)
+    warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
     restart = f"ldem run {args.file} --out {args.out} --restart" + "".join(f" --set {s}" for s in args.set)
     if args.restart and args.extend is None and finished(args.out, restart):

@@ -13,6 +13,8 @@ import re
 
 import numpy as np
 
+from . import _core
+
 AXES = {"x": 0, "y": 1, "z": 2}
 _SHAPE_KEYS = {"box": {"size", "notch", "cutout"}, "cylinder": {"diameter", "length", "axis"},
                "dogbone": {"size", "neck", "radius"}, "mask": {"file", "size"}}
@@ -77,6 +79,8 @@ def point(value, where: Where, key: str) -> np.ndarray:
 
 
 def _modules(length: float, L0: float, where: Where, key: str) -> int:
+    if not length / L0 <= 1e5:  # ldem cube's bound (CubeGeometry::modules): no count below overflows
+        raise where(key, f"{length:g} m is {length / L0:g} modules of L0 = {L0:g} m: far beyond any machine")
     n = round(length / L0)
     if n < 1 or abs(n * L0 - length) > 1e-9 * length:
         raise where(key, f"{length:g} m is not a multiple of the module L0 = {L0:g} m")
@@ -109,6 +113,10 @@ def module_mask(shape: dict, where: Optional[Where] = None):
             raise where("shape.size", f"must be [x, y, z] in m (got {size!r})")
         size = [number(s, where, "shape.size") for s in size]
     n = tuple(_modules(s, L0, where, "shape.diameter" if kind == "cylinder" else "shape.size") for s in size)
+    try:  # the lattice's memory estimate (the same as ldem cube's), before the arrays below
+        _core.check_fits(*n)
+    except ValueError as e:
+        raise where("shape.L0", str(e)) from None
     # Module centres.
     c = [(np.arange(k) + 0.5) * L0 for k in n]
     x, y, z = np.meshgrid(*c, indexing="ij")

@@ -18,12 +18,11 @@ The file (examples/ has one per classic test; docs/specimens.md):
                  stress_label, strain_label (the figures' axes: "F/(bD) [MPa]", "deflection/D [-]")
     [material], [loading], [run]: any parameter of `ldem cube --help` in those groups
 
-Stress = reactions of the support group along the drive's direction / area;
-strain = the drive's displacement (mean over the loaded group) / gauge_length;
-both positive in the sense the specimen is driven (compression too). A driven
-group moves as one along the drive: a rigid platen under displacement control.
-The module mask comes from ldem.shapes (geometry); everything the run
-computes is in C++ (ldem._core.Simulation).
+Stress = the support group's reactions along the drive / area; strain = the drive's
+displacement (mean over the loaded group) / gauge_length; both positive in the sense
+the specimen is driven. A driven group moves as one: a rigid platen. The mask comes
+from ldem.shapes; everything the run computes is in C++ (ldem._core.Simulation).
+Longer than 300 lines: the file's keys, their checks (with --set's) and the specimen built from them, read top to bottom.
 """
 from __future__ import annotations
 
@@ -118,6 +117,10 @@ class Build:
         self.L0, self.n, self.mask = module_mask(data["shape"], where)
         self.params["L0"] = self.L0
         self.params["size"] = self.L0 * self.n[0]
+        try:  # the bounds that tie the parameters to L0 (pkg/ldem/Relations.hpp)
+            self.cpp_params().validate()
+        except ValueError as e:
+            raise _named(e, where, overrides or {}) from None
         nodes = Nodes(self.n, self.L0, self.mask)
         self.groups, owner = {}, {}
         node, dim, weight = [], [], []
@@ -237,9 +240,15 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     try:
         p.material.validate(), p.loading.validate(), p.run.validate()
     except ValueError as e:
-        name = str(e).split()[0]
-        raise blame(_PARAMS.get(name, {"group": "parameters"})["group"], name, str(e), name in overrides) from None
+        raise _named(e, where, overrides) from None
     return out
+
+
+def _named(error: ValueError, where: Where, overrides) -> SpecimenError:
+    """A parameter's error (its message starts with its name): at its --set option, or at its key in the file."""
+    name = str(error).split()[0]
+    return SpecimenError(f"--set {name}: {error}") if name in overrides else \
+        where(f"{_PARAMS[name]['group'] if name in _PARAMS else 'parameters'}.{name}", str(error))
 
 
 class SpecimenTest:
@@ -256,8 +265,7 @@ class SpecimenTest:
 
     @classmethod
     def of(cls, **sections) -> "SpecimenTest":
-        """From keyword arguments, one per section of the file: title, shape,
-        groups, measure, material, loading, run (dicts shaped as the file's)."""
+        """From keyword arguments, one per section of the file (dicts shaped as the file's)."""
         return cls(sections)
 
     @classmethod

@@ -18,6 +18,7 @@
 #include "ldem/RandomField.hpp"
 #include "ldem/Separation.hpp"
 #include "ldem/Comm.hpp"
+#include "ldem/Relations.hpp"
 #include "ldem/Slab.hpp"
 #include "ldem/Simulation.hpp"
 #include "ldem/Specimen.hpp"
@@ -257,6 +258,12 @@ PYBIND11_MODULE(_core, m) {
           "the drive's displacement in one step over eps_p x the gauge length");
     m.def("refuse_drive_jump", &refuseDriveJump, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
           "ValueError when the drive moves by eps_p or more in one step (Simulation.run refuses such a run)");
+    m.def("refuse_drive_crawl", &refuseDriveCrawl, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
+          "ValueError when the drive takes more than a million steps to strain eps_p (Simulation.run refuses it too)");
+    m.def("brittle_warning", &brittleWarning, py::arg("material"), py::arg("L0"),
+          "a warning ('' if none) when the bars of the mean G_f are perfectly brittle by construction");
+    m.def("brittle_fracture_energy", &brittleFractureEnergy, py::arg("material"), py::arg("L0"), py::arg("diagonal"),
+          "the G_f below which a bar (normal, or diagonal) is perfectly brittle: E A eps_p^2 L / (2 A_f) [N/m]");
     py::class_<LoadLossDetector>(m, "LoadLossDetector", "the load-loss test of Simulation.run, one record at a time")
         .def(py::init<double, double>(), py::arg("window"), py::arg("fraction"))
         .def("update", &LoadLossDetector::update, py::arg("time"), py::arg("stress"), py::arg("peak_stress"),
@@ -311,6 +318,18 @@ PYBIND11_MODULE(_core, m) {
           "(empty: all); nodes of no present module keep their ids with mass 0");
     m.def("expected_node_count", &expectedNodeCount);
     m.def("expected_bar_count", &expectedBarCount);
+    m.def("memory_estimate", &memoryEstimate, py::arg("nx"), py::arg("ny"), py::arg("nz"),
+          "bytes a run of an nx x ny x nz lattice takes (kBytesPerBar a bar, Lattice.hpp)");
+    m.def("check_fits", [](int nx, int ny, int nz) {
+              const auto [k0, k1] = worldSlab(nz);
+              checkFits(nx, ny, nz, k0, k1);
+          }, py::arg("nx"), py::arg("ny"), py::arg("nz"),
+          "raises ValueError, with the estimate, unless this process's slab of the nx x ny x nz lattice fits it "
+          "(the check every builder makes before it allocates)");
+    m.def("lattice_misfit", [](int nx, int ny, int nz, double bytes) {
+              return latticeMisfit(nx, ny, nz, 0, nz, MemoryLimit{bytes, "this machine has"});
+          }, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("bytes"),
+          "why the whole nx x ny x nz lattice does not fit one process of `bytes` of memory ('' if it does)");
 
     // Every law's one-bar functions (pkg/ldem/laws/), for tests and for anyone who wants to plot them.
     forEachLawType([&](auto* law) {

@@ -1,6 +1,8 @@
 // Stop at the final strain, if the event has not come. Always on.
 // Parameters: LDEM_FINAL_STRAIN_STOP_PARAMETERS (final_strain).
 #pragma once
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "ldem/Parameters.hpp"
@@ -17,7 +19,17 @@ public:
     explicit FinalStrainStop(const Params& p) : p_(p) {}
     void record(StopRecord&) {}
     const char* reason(const CurvePoint& p, const RunSummary&) const {
-        return p.meanStrain >= p_.finalStrain ? "final_strain" : nullptr;
+        return p.meanStrain < p_.finalStrain ? nullptr : "final_strain";
+    }
+    // A run that would stop before its first record (at mean strain firstRecord)
+    // has no curve, and its energies are of the smooth start's first steps
+    // (--final-strain 1e-9 stopped after 29 steps with a balance error of 9e-2,
+    // blamed on the integration). Refused before the first step.
+    void refuseBeforeFirstRecord(double firstRecord) const {
+        if (p_.finalStrain > firstRecord) return;
+        throw std::invalid_argument("final_strain " + formatNumber(p_.finalStrain) + " comes before the first record "
+                                    "(at mean strain " + formatNumber(firstRecord) + "): the run would record "
+                                    "nothing and can never reach the peak; raise final_strain");
     }
     std::vector<double> state() const { return {}; }
     void setState(const std::vector<double>&) {}

@@ -17,4 +17,15 @@ void refuseDriveJump(double strainRate, double dt, double epsP) {
     throw std::invalid_argument(msg);
 }
 
+void refuseDriveCrawl(double strainRate, double dt, double epsP) {
+    const double r = driveStep(strainRate, dt, epsP);
+    if (r >= kDriveStepFloor) return;
+    char msg[400];
+    std::snprintf(msg, sizeof msg,
+                  "strain_rate %g 1/s takes %.3g steps of %.3g s to strain eps_p: more than %.0f before any bar can "
+                  "crack; quasi-static loading needs no strain rate below %.3g 1/s here",
+                  strainRate, 1 / r, dt, 1 / kDriveStepFloor, kDriveStepFloor * epsP / dt);
+    throw std::invalid_argument(msg);
+}
+
 }  // namespace ldem

@@ -17,6 +17,11 @@
 namespace ldem {
 
 constexpr double kDriveStepLimit = 1.0;
+// The other end: a drive so slow that it takes more than a million steps to
+// strain eps_p is refused too. The default runs take ~10^3 (0.02/s at L0 = 0.02 m,
+// r ~ 1e-3), 0.2% of their work is kinetic at the peak: slower changes no
+// result, and such a run would take hours to reach its peak.
+constexpr double kDriveStepFloor = 1e-6;
 constexpr double kKineticAtPeakLimit = 0.01;
 
 // The drive's displacement in one step over eps_p x the gauge length.
@@ -24,6 +29,8 @@ inline double driveStep(double strainRate, double dt, double epsP) { return stra
 
 // Throws std::invalid_argument (saying the strain rate to stay far below) when driveStep >= kDriveStepLimit.
 void refuseDriveJump(double strainRate, double dt, double epsP);
+// Throws std::invalid_argument when driveStep < kDriveStepFloor.
+void refuseDriveCrawl(double strainRate, double dt, double epsP);
 
 // K / W at the record of the largest stress (the first such record; 0 while W <= 0), fed record by
 // record. The stress is compared in MPa, as the curve's stress_MPa column is (bit for bit the same choice of row).

@@ -1,0 +1,52 @@
+#include "ldem/Relations.hpp"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace ldem {
+
+double brittleFractureEnergy(const Material& m, double L0, bool diagonal) {
+    const double A = diagonal ? diagonalBarArea(m.nu, L0) : normalBarArea(m.nu, L0);
+    const double Af = diagonal ? diagonalFractureArea(m.ca, L0) : normalFractureArea(m.ca, L0);
+    const double L = diagonal ? 0.5 * std::sqrt(3.0) * L0 : L0;
+    return m.E * A * m.epsP * m.epsP * L / (2 * Af);
+}
+
+double meanLimitStrain(const Material& m, double L0) {
+    return m.epsP * m.GfMean / brittleFractureEnergy(m, L0, false);  // eps_r / eps_p = G_f / G_b
+}
+
+void checkRelations(const Material& m, const LoadingParams& l, const RunParams&, double L0) {
+    std::ostringstream msg;
+    msg.precision(3);
+    const double Gb = brittleFractureEnergy(m, L0, true), Gn = brittleFractureEnergy(m, L0, false);
+    if (m.GfCV == 0 && m.GfMean < std::min(Gb, Gn)) {
+        msg << "Gf_mean " << m.GfMean << " N/m (the same in every bar, Gf_cv 0) makes every bar perfectly brittle: "
+            << "it is below E A eps_p^2 L / (2 A_f) = " << std::min(Gb, Gn) << " N/m (E, nu, eps_p, c_a and L0 = "
+            << L0 << " m); raise Gf_mean or lower c_a";
+        throw std::invalid_argument(msg.str());
+    }
+    if (const double epsR = meanLimitStrain(m, L0); !(epsR <= 1)) {
+        msg << "Gf_mean " << m.GfMean << " N/m gives a bar the limit strain eps_r = 2 c_a G_f / (E phi eps_p L0) = "
+            << epsR << ", above 1: the lattice's geometry is that of small strains (at most "
+            << Gn / m.epsP << " N/m here)";
+        throw std::invalid_argument(msg.str());
+    }
+    if (l.rampTime > m.epsP / l.strainRate) {
+        msg << "ramp_time " << l.rampTime << " s is above eps_p / strain_rate = " << m.epsP / l.strainRate
+            << " s: the smooth start must end before the mean strain reaches eps_p / 2, before any bar can crack";
+        throw std::invalid_argument(msg.str());
+    }
+}
+
+std::string brittleWarning(const Material& m, double L0) {
+    const double Gn = brittleFractureEnergy(m, L0, false);
+    if (!(m.GfMean < Gn)) return "";
+    std::ostringstream msg;
+    msg.precision(3);
+    msg << "Gf_mean " << m.GfMean << " N/m is below E phi eps_p^2 L0 / (2 c_a) = " << Gn
+        << " N/m: the bars of the mean G_f are perfectly brittle (eps_r < eps_p), by construction";
+    return msg.str();
+}
+
+}  // namespace ldem

@@ -1,0 +1,110 @@
+"""Every input checked before any large allocation (issue 40, item 3): the
+lattice's memory estimate for ldem cube, ldem run and the Python API (one C++
+function, pkg/ldem/Lattice.hpp checkFits), and the bounds that tie parameters
+(pkg/ldem/Relations.hpp), each refused with its message and exit code 2."""
+import os
+import time
+
+import pytest
+
+import ldem
+from ldem import _core
+from conftest import ROOT
+
+TINY = ["--size", "0.04", "--threads", "1", "--no-progress", "--no-plots"]
+
+
+def _error(r) -> str:
+    assert r.returncode == 2, (r.returncode, r.stderr)
+    assert "Traceback" not in r.stderr
+    errors = [line for line in r.stderr.strip().splitlines() if ": warning: " not in line]
+    assert len(errors) == 1, r.stderr
+    return errors[0]
+
+
+def test_a_specimen_file_too_big_is_refused_at_once_with_the_estimate(cli, tmp_path):
+    """examples/beam_3pb.toml with L0 = 0.0001 (3500 x 500 x 1000 modules) ran
+    until killed; under a memory limit it ended in numpy's traceback. Now the
+    estimate of ldem cube refuses it before the module mask is drawn."""
+    text = open(os.path.join(ROOT, "examples", "beam_3pb.toml")).read().replace("L0 = 0.01", "L0 = 0.0001")
+    path = tmp_path / "beam.toml"
+    path.write_text(text)
+    t0 = time.perf_counter()
+    r = cli("run", str(path), "--out", str(tmp_path / "o"), "--no-progress")
+    seconds = time.perf_counter() - t0
+    line = _error(r)
+    assert "shape.L0: a lattice of 3500 x 500 x 1000 modules (24" in line and " GB; this machine has " in line, line
+    assert "MPI" not in line
+    assert seconds < 10, seconds
+    with pytest.raises(ValueError, match="needs about 24"):  # the Python API: the same check
+        ldem.SpecimenTest.from_file(str(path))
+
+
+def test_a_cube_beyond_any_rank_gets_no_mpi_advice(cli, tmp_path):
+    line = _error(cli("cube", "--size", "20", "--out", str(tmp_path / "o"), "--no-progress"))
+    assert "1000 x 1000 x 1000 modules (14" in line and "needs about 1400 GB; this machine has" in line, line
+    assert "MPI" not in line
+
+
+def test_mpi_advice_only_when_the_memory_holds_the_lattice():
+    """Past 32-bit node ids (2^31 bars) one process cannot number the lattice;
+    ranks on this machine can hold it only if its memory can."""
+    n = 600  # 600^3 modules: 3.0e9 bars, 303 GB
+    assert _core.memory_estimate(n, n, n) == 100 * _core.expected_bar_count(n, n, n)
+    short = _core.lattice_misfit(n, n, n, 100e9)
+    assert "needs about 303 GB; this machine has 100 GB" in short and "MPI" not in short
+    big = _core.lattice_misfit(n, n, n, 1e12)
+    assert "32-bit node ids" in big and "MPI ranks" in big
+    assert _core.lattice_misfit(20, 20, 20, 1e12) == ""
+
+
+def test_out_of_memory_under_a_limit_is_one_line(cli, tmp_path):
+    """Under ulimit -v below the estimate's margin an allocation may still fail: one line, exit 2."""
+    import subprocess
+    import sys
+
+    code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_AS, (1 << 30, resource.RLIM_INFINITY)); "
+            "from ldem import cli; sys.exit(cli.main(sys.argv[1:]))")
+    r = subprocess.run([sys.executable, "-c", code, "cube", "--size", "3", "--out", str(tmp_path / "o"),
+                        "--no-progress", "--threads", "1"], capture_output=True, text=True, timeout=120)
+    assert _error(r) == "ldem cube: error: out of memory building the specimen: it does not fit this process"
+
+
+BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 L / (2 A_f) (4.01199 N/m"
+
+
+@pytest.mark.parametrize("args,message", [
+    (["--Gf-mean", "1e-30"], BRITTLE),
+    (["--c-a", "1e-300"], "every bar is perfectly brittle"),
+    (["--c-a", "1.5"], "c_a must be in (0, 1] (got 1.5)"),
+    (["--Gf-mean", "2", "--Gf-cv", "0"], "Gf_mean 2 N/m (the same in every bar, Gf_cv 0) makes every bar "
+                                         "perfectly brittle: it is below E A eps_p^2 L / (2 A_f) = 3.41 N/m"),
+    (["--Gf-mean", "1e6"], "Gf_mean 1e+06 N/m gives a bar the limit strain eps_r = 2 c_a G_f / (E phi eps_p L0) = "
+                           "15.7, above 1"),
+    (["--ramp-time", "1e9"], "ramp_time 1e+09 s is above eps_p / strain_rate = 0.00315 s"),
+    (["--final-strain", "1e-9"], "comes before the first record (at mean strain"),
+    (["--strain-rate", "1e-9"], "steps of 2.15e-06 s to strain eps_p: more than 1000000 before any bar can crack"),
+])
+def test_absurd_inputs_are_refused_with_their_rule(cli, tmp_path, args, message):
+    line = _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args))
+    assert message in line, line
+
+
+def test_brittle_bars_by_construction_are_warned_of(cli, tmp_path):
+    """Gf_mean 3.8 N/m with Gf_cv 0: below the normal bars' 4.01 N/m, above the
+    diagonals' 3.41: the normal bars are brittle, the run goes on with a warning."""
+    r = cli("cube", *TINY, "--out", str(tmp_path / "o"), "--Gf-mean", "3.8", "--Gf-cv", "0")
+    assert r.returncode == 0, r.stderr
+    assert "warning: Gf_mean 3.8 N/m is below E phi eps_p^2 L0 / (2 c_a) = 4.01 N/m" in r.stderr
+    assert "66 of 130 bars had eps_r < eps_p" in r.stdout
+
+
+def test_the_help_states_the_rules_with_true_numbers(cli):
+    material = ldem.CubeTest().params().material
+    assert _core.brittle_fracture_energy(material, 0.02, False) == pytest.approx(4.0, abs=0.05)
+    assert _core.brittle_fracture_energy(material, 0.02, False) / material.eps_p == pytest.approx(6.4e4, rel=0.01)
+    text = " ".join(cli("cube", "--help").stdout.split())
+    for rule in ("(4.0 N/m for a normal bar at the defaults) is perfectly brittle",
+                 "(6.4e4 N/m at the defaults)", "at most eps_p / strain_rate", "at most 1: a bar's fracture area at most a module's face",
+                 "it can never reach the peak", "more than 1e-6 eps_p in one step"):
+        assert rule in text, rule
