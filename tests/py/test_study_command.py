@@ -11,11 +11,20 @@ import pytest
 
 import ldem
 from conftest import ROOT
+from ldem.cli import build_parser
 from ldem.study import ablation, options, validation
 from ldem.study.cases import case_name
 from ldem.study.registry import STUDIES
 
 LOADS = next(p["choices"] for p in ldem._core.parameter_table() if p["name"] == "load")
+
+
+def help_text(capsys, *command) -> str:
+    """`ldem *command --help`, in this process, its spaces and line breaks made single spaces."""
+    with pytest.raises(SystemExit) as e:
+        build_parser().parse_args([*command, "--help"])
+    assert e.value.code == 0
+    return " ".join(capsys.readouterr().out.split())
 
 
 def test_ldem_study_lists_every_registered_study_with_its_line(cli):
@@ -31,24 +40,22 @@ def test_ldem_study_lists_every_registered_study_with_its_line(cli):
 
 @pytest.mark.parametrize("name", [n for n in STUDIES if n not in ("refinement", "beams", "calibration",
                                                                    "validation")])
-def test_the_load_choices_are_the_parameter_tables(cli, name):
+def test_the_load_choices_are_the_parameter_tables(capsys, name):
     """A study's --loads takes the choices of the parameter `load`, all of them
     by default (refinement: uniform only), and says which they are."""
-    r = cli("study", name, "--help")
-    text = " ".join(r.stdout.split())
-    assert r.returncode == 0 and f"--loads LOADS comma-separated loads, of: {', '.join(LOADS)} " \
+    text = help_text(capsys, "study", name)
+    assert f"--loads LOADS comma-separated loads, of: {', '.join(LOADS)} " \
         f"(default: {','.join(LOADS)})" in text, text
     assert options.parse_loads(",".join(LOADS)) == LOADS
     with pytest.raises(ValueError, match=f"unknown load 'shear' \\(expected {' or '.join(LOADS)}\\)"):
         options.parse_loads("uniform,shear")
 
 
-def test_a_studys_parameter_options_are_the_tables(cli):
+def test_a_studys_parameter_options_are_the_tables(capsys, cli):
     """--strain-rate, --size, --seed: the parameter's help, unit, domain and
     type from the table; the study's default where it has its own."""
     rows = {p["name"]: p for p in ldem._core.parameter_table()}
-    r = cli("study", "damping", "--help")
-    text = " ".join(r.stdout.split())
+    text = help_text(capsys, "study", "damping")
     for flag, name, default in (("--strain-rate STRAIN_RATE", "strain_rate", "0.02"), ("--size SIZE", "size", "0.96"),
                                 ("--seed SEED", "seed", "1")):
         p = rows[name]
@@ -106,6 +113,6 @@ def test_a_blind_prediction_runs_as_a_study_command(tmp_path, cli):
         assert s["parameters"]["parameters"]["E"] == material["E"] and s["parameters"]["parameters"]["L0"] == 0.025
         peaks.append(s["peak_stress_MPa"] * 1e3)
     row, = ldem.study.read_csv(str(out / "predictions.csv"))
-    assert float(row["peak_load_kN"]) == pytest.approx(sum(peaks) / 2, rel=1e-12) and row["seeds"] == 2
+    assert float(row["peak_load_kN"]) == pytest.approx(sum(peaks) / 2, rel=1e-5) and float(row["seeds"]) == 2
     printed = ast.literal_eval(r.stdout.splitlines()[-1])
     assert printed["specimen"] == "l_panel" and printed["peak_load_kN"] == pytest.approx(sum(peaks) / 2, rel=1e-12)

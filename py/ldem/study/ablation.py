@@ -19,7 +19,7 @@ import numpy as np
 
 from .. import io
 from ..cube import CubeTest
-from .options import add_loads, add_seeds, check_tests, parse_loads, parameter_option, seed_count
+from .options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
 from .cases import Named, case_name
 from .executors import run_cases
 from .registry import Study, register
@@ -121,10 +121,7 @@ def cmd_ablation(args) -> int:
         return 0
     if not args.out:
         raise ValueError("--out DIR: the study folder (or --table RUNS.jsonl)")
-    variants = [v.strip() for v in args.variants.split(",") if v.strip()]
-    for v in variants:
-        if v not in VARIANTS:
-            raise ValueError(f"unknown variant '{v}' (expected some of {', '.join(VARIANTS)})")
+    variants = parse_names(args.variants, VARIANTS, "variant", "some of " + ", ".join(VARIANTS))
     runs = [(ld, v) for ld in parse_loads(args.loads) for v in variants]
     tests = ablation_tests(args.size, range(1, seed_count(args) + 1), args.threads, runs)
     check_tests([t.cube for t in tests])

@@ -49,7 +49,7 @@ from ..cube import CubeTest
 from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
 from .mesh_report import write_mesh_report
 from .options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
-                      parse_loads, run_options, seed_count)
+                      parse_loads, parse_names, run_options, seed_count)
 from .registry import Study, register
 from .mesh_tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
                           summarize, variant_law)
@@ -234,10 +234,7 @@ def add_arguments(m) -> None:
 
 
 def cmd_mesh(args) -> int:
-    variants = [v.strip() for v in args.variants.split(",") if v.strip()]
-    for v in variants:
-        if v not in VARIANTS:
-            raise ValueError(f"unknown variant '{v}' (expected some of {', '.join(VARIANTS)})")
+    variants = parse_names(args.variants, VARIANTS, "variant", "some of " + ", ".join(VARIANTS))
     for ref in args.reference:
         if not os.path.isdir(os.path.join(ref, "cases")):
             raise ValueError(f"--reference {ref}: not a study folder (no cases/ in it)")

@@ -31,13 +31,18 @@ def parse_floats(text: str, what: str) -> List[float]:
     return values
 
 
+def parse_names(text: str, known, what: str, expected: str) -> List[str]:
+    """A comma-separated list of names, each one of `known` (else: unknown `what`, expected ...)."""
+    out = [x.strip() for x in text.split(",") if x.strip()]
+    for x in out:
+        if x not in known:
+            raise ValueError(f"unknown {what} '{x}' (expected {expected})")
+    return out
+
+
 def parse_loads(text: str) -> List[str]:
     """A comma-separated list of the load parameter's choices."""
-    out = [x.strip() for x in text.split(",") if x.strip()]
-    for ld in out:
-        if ld not in LOADS:
-            raise ValueError(f"unknown load '{ld}' (expected {' or '.join(LOADS)})")
-    return out
+    return parse_names(text, LOADS, "load", " or ".join(LOADS))
 
 
 def add_loads(p: argparse.ArgumentParser, default: str = ",".join(LOADS)) -> None:
