@@ -52,8 +52,8 @@ def test_the_load_choices_are_the_parameter_tables(capsys, name):
 
 
 def test_a_studys_parameter_options_are_the_tables(capsys, cli):
-    """--strain-rate, --size, --seed: the parameter's help, unit, domain and
-    type from the table; the study's default where it has its own."""
+    """--strain-rate, --size, --seed, --zetas: the parameter's help, unit,
+    domain and type from the table; the study's default where it has its own."""
     rows = {p["name"]: p for p in ldem._core.parameter_table()}
     text = help_text(capsys, "study", "damping")
     for flag, name, default in (("--strain-rate STRAIN_RATE", "strain_rate", "0.02"), ("--size SIZE", "size", "0.96"),
@@ -61,6 +61,9 @@ def test_a_studys_parameter_options_are_the_tables(capsys, cli):
         p = rows[name]
         unit = f" [{p['unit']}]" if p["unit"] else ""
         assert f"{flag} {p['help']}{unit}; {p['domain']} (default: {default})" in text, (flag, text)
+    z = rows["zeta"]  # --zetas: several values of the parameter zeta
+    assert f"--zetas ZETAS comma-separated values of zeta, {z['help']}; each {z['domain']} (above 1: overcritical) " \
+        "(default: 0.02,2)" in text, text
     assert cli("study", "damping", "--out", "x", "--seed", "1.5").returncode == 2  # an int, as the table says
 
 

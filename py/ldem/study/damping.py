@@ -10,7 +10,7 @@ from ..cube import CubeTest
 from .cases import damping_tests, load_case
 from .executors import run_cases
 from .options import (add_common, check_tests, common_settings, parse_floats, parse_loads,
-                      parameter_option)
+                      parameter_option, values_option)
 from .registry import Study, register
 from .tables import CASE_COLUMNS, case_row
 
@@ -33,7 +33,7 @@ def add_arguments(d) -> None:
     add_common(d)
     parameter_option(d, "size", default=0.96)
     parameter_option(d, "seed")
-    d.add_argument("--zetas", default="0.02,2", help="damping ratios on the fundamental mode (above 1: overcritical)")
+    values_option(d, "zeta", "--zetas", (0.02, 2), " (above 1: overcritical)")
 
 
 def cmd_damping(args) -> int:

@@ -49,7 +49,7 @@ from ..cube import CubeTest
 from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
 from .mesh_report import write_mesh_report
 from .options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
-                      parse_loads, parse_names, run_options, seed_count)
+                      parse_loads, parse_names, run_options, seed_count, values_option)
 from .registry import Study, register
 from .mesh_tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
                           summarize, variant_law)
@@ -215,8 +215,8 @@ def earlier_laws(folder: str, modules, calibrate: bool, out: str) -> Dict[float,
 
 def add_arguments(m) -> None:
     add_common(m)
-    m.add_argument("--sizes", default=",".join(f"{b:g}" for b in MESH_SIZES), help="cube sides to predict [m]")
-    m.add_argument("--modules", default=",".join(f"{b:g}" for b in COARSE_MODULES), help="coarse module sides L [m]")
+    values_option(m, "size", "--sizes", MESH_SIZES, "; the cubes to predict")
+    values_option(m, "L0", "--modules", COARSE_MODULES, "; the coarse modules L")
     m.add_argument("--variants", default=",".join(VARIANTS),
                    help="plain: the fine law; law: eps_p and CV(G_f) from the fine cube of side L; "
                         "c_a: the corrected c_a only; criterion: both; calibrated: eps_p and c_a from the "

@@ -21,6 +21,17 @@ def parameter_option(p: argparse.ArgumentParser, name: str, option: str = "", no
     add_parameter_option(p, FIELDS[name], option, note, **kw)
 
 
+def values_option(p: argparse.ArgumentParser, name: str, option: str, values: Sequence[float], note: str = "",
+                  **kw) -> None:
+    """An option that takes several values of the parameter `name`, comma-separated
+    (default: `values`), said with the table's help, unit and domain."""
+    md = FIELDS[name].metadata
+    unit = f" [{md['unit']}]" if md["unit"] else ""
+    p.add_argument(option, default=",".join(f"{v:g}" for v in values),
+                   help=f"comma-separated values of {name}, {md['help']}{unit}; each {md['domain']}{note}"
+                   .replace("%", "%%"), **kw)
+
+
 def parse_floats(text: str, what: str) -> List[float]:
     try:
         values = [float(x) for x in text.split(",") if x.strip()]

@@ -15,7 +15,7 @@ from ..cube import CubeTest
 from .cases import read_discussion
 from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier
 from .options import (add_common, add_rerun_options, add_seeds, check_tests, common_settings,
-                      parse_floats, parse_loads, run_options, seed_count)
+                      parse_floats, parse_loads, run_options, seed_count, values_option)
 from .registry import Study, register
 from .mesh import load_settings
 from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, summarize
@@ -109,12 +109,10 @@ def write_refinement_report(out: str, table, missing: int, fmt: str = "png", kep
 def add_arguments(r) -> None:
     add_common(r)
     r.set_defaults(loads="uniform")
-    r.add_argument("--sizes", default=",".join(f"{b:g}" for b in REFINEMENT), help="cube sides [m]")
-    r.add_argument("--L0s", default="", metavar="L0,...",
-                   help="module sides for every size (default: 0.02,0.01,0.0075,0.005 for 0.12 m; "
-                        "0.02,0.01,0.005 for 0.24 m)")
-    r.add_argument("--corr-lengths", dest="corr_lengths", default=",".join(f"{x:g}" for x in CORR_LENGTHS),
-                   help="correlation lengths of G_f [m] (0: one draw per bar)")
+    values_option(r, "size", "--sizes", REFINEMENT)
+    values_option(r, "L0", "--L0s", (), "; for every size (default: 0.02,0.01,0.0075,0.005 for 0.12 m; "
+                                        "0.02,0.01,0.005 for 0.24 m)", metavar="L0,...")
+    values_option(r, "corr_length", "--corr-lengths", CORR_LENGTHS)
     add_seeds(r)
     add_rerun_options(r, "the cases of its cases.csv are not run again and enter the tables as they are")
 

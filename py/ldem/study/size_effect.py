@@ -13,7 +13,7 @@ from ..cube import CubeTest
 from .cases import load_case, load_curves, read_discussion, size_effect_tests
 from .executors import run_cases
 from .options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
-                      parse_loads, seed_count)
+                      parse_loads, seed_count, values_option)
 from .registry import Study, register
 from .tables import CASE_COLUMNS, SUMMARY_COLUMNS, aggregate, case_row, fractal_fits
 
@@ -49,7 +49,7 @@ def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, f
 
 def add_arguments(s) -> None:
     add_common(s)
-    s.add_argument("--sizes", default=",".join(f"{b:g}" for b in STUDY_SIZES), help="cube sides [m]")
+    values_option(s, "size", "--sizes", STUDY_SIZES)
     add_seeds(s, "size and load")
 
 
