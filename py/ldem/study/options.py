@@ -8,7 +8,7 @@ import dataclasses
 from typing import List, Sequence
 
 from ..cube import CubeTest, settings
-from ..helptext import add_output_flags, add_parameter_option
+from ..helptext import add_output_flags, add_parameter_option, parameter_help
 from .executors import default_threads
 
 FIELDS = {f.name: f for f in dataclasses.fields(CubeTest)}  # one per row of the parameter table
@@ -25,11 +25,8 @@ def values_option(p: argparse.ArgumentParser, name: str, option: str, values: Se
                   **kw) -> None:
     """An option that takes several values of the parameter `name`, comma-separated
     (default: `values`), said with the table's help, unit and domain."""
-    md = FIELDS[name].metadata
-    unit = f" [{md['unit']}]" if md["unit"] else ""
     p.add_argument(option, default=",".join(f"{v:g}" for v in values),
-                   help=f"comma-separated values of {name}, {md['help']}{unit}; each {md['domain']}{note}"
-                   .replace("%", "%%"), **kw)
+                   help=f"comma-separated values of {name}, " + parameter_help(FIELDS[name], note, "each "), **kw)
 
 
 def parse_floats(text: str, what: str) -> List[float]:
