@@ -2,6 +2,27 @@
 import argparse
 
 
+def parameter_help(field, note: str = "", each: str = "") -> str:
+    """The help of an option of a parameter, a field of ldem.CubeTest: the
+    table's help, unit and domain (choices say theirs), then note."""
+    md = field.metadata
+    unit = f" [{md['unit']}]" if md["unit"] else ""
+    domain = "" if "choices" in md else f"; {each}{md['domain']}"
+    return f"{md['help']}{unit}{domain}{note}".replace("%", "%%")
+
+
+def add_parameter_option(p, field, option: str = "", note: str = "", **kw) -> None:
+    """The option of one parameter, a field of ldem.CubeTest (its name, type,
+    default, unit, help, domain and choices: pkg/ldem/Parameters.hpp's line);
+    note: said after the table's help; kw replaces any of argparse's (a
+    study's own default)."""
+    choices = {"choices": field.metadata["choices"]} if "choices" in field.metadata else {}
+    p.add_argument(option or "--" + field.name.replace("_", "-"),
+                   **{"dest": field.name, "type": type(field.default), "default": field.default,
+                      "metavar": None if choices else field.name.upper(), "help": parameter_help(field, note),
+                      **choices, **kw})
+
+
 def add_output_flags(p: argparse.ArgumentParser) -> None:
     """The options of what a run or a study writes, the same everywhere."""
     p.add_argument("--no-progress", action="store_true", help="no progress bar")

@@ -13,13 +13,9 @@ import dataclasses
 import os
 import sys
 
-from .helptext import HelpFormatter, add_output_flags
+from .helptext import HelpFormatter, add_output_flags, add_parameter_option
 
 EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
-
-
-def _option(name: str) -> str:
-    return "--" + name.replace("_", "-")
 
 
 def add_cube_options(p: argparse.ArgumentParser, skip=()) -> None:
@@ -31,16 +27,9 @@ def add_cube_options(p: argparse.ArgumentParser, skip=()) -> None:
     for f in dataclasses.fields(CubeTest):
         if f.name in skip:
             continue
-        md = f.metadata
-        group = groups.get(md["group"]) or groups.setdefault(md["group"], p.add_argument_group(md["group"]))
-        unit = f" [{md['unit']}]" if md["unit"] else ""
-        kw = {"choices": md["choices"]} if "choices" in md else {}
-        domain = "" if kw else f"; {md['domain']}"
-        group.add_argument(_option(f.name), dest=f.name, type=type(f.default), default=f.default,
-                           metavar=f.name.upper() if not kw else None,
-                           help=f"{md['help']}{unit}{domain}".replace("%", "%%"), **kw)  # the formatter adds (default: ...)
-
-
+        group = groups.get(f.metadata["group"]) or groups.setdefault(f.metadata["group"],
+                                                                     p.add_argument_group(f.metadata["group"]))
+        add_parameter_option(group, f)  # the formatter adds (default: ...)
 
 
 def cube_from_args(args) -> "CubeTest":

@@ -3,6 +3,7 @@ ldem.study.concrete) and the diagnosis's factors (ldem.study.beam_diagnosis):
 the virtual prism's gauges read a known material, the procedure meets its
 targets on a coarse prism and its output for Grégoire et al.'s concrete is
 pinned, each factor changes exactly what it names."""
+import json
 import math
 
 import numpy as np
@@ -43,12 +44,18 @@ def test_a_bad_property_is_a_clear_error_before_any_prism(args, message):
         concrete.calibrate(*args, log=lambda s: None)
 
 
-def test_gregoire_concrete_calibrated_on_a_coarse_prism_meets_its_targets_and_is_pinned():
-    """L0 = 10 mm, one seed (15 s): the last prism is within 1 % of E and f_t;
-    G_F is MC2010's (f_c given) and goes in as it is; the law is the
-    procedure's; the numbers are this commit's (a change of the procedure or
-    of the lattice changes them)."""
-    r = concrete.calibrate(37e9, 0.21, 3.9e6, 42.3e6, L0=0.01, seeds=(1,), log=lambda s: None)
+def test_gregoire_concrete_calibrated_on_a_coarse_prism_meets_its_targets_and_is_pinned(tmp_path, cli):
+    """`ldem study calibration` (ldem.study.concrete.calibrate) at L0 = 10 mm,
+    one seed (15 s): the last prism is within 1 % of E and f_t; G_F is
+    MC2010's (f_c given) and goes in as it is; the law is the procedure's; the
+    numbers are this commit's (a change of the procedure or of the lattice
+    changes them). The command prints the rounds, then the JSON it writes."""
+    out = tmp_path / "material.json"
+    p = cli("study", "calibration", "--E", "37e9", "--nu", "0.21", "--ft", "3.9e6", "--fc", "42.3e6", "--L0", "0.01",
+            "--seeds", "1", "--out", str(out))
+    assert p.returncode == 0, p.stderr
+    r = json.loads(out.read_text())
+    assert p.stdout.endswith(out.read_text()) and "round 1: E " in p.stdout and r["seeds"] == [1]
     m, t = r["material"], r["target"]
     assert t["G_F"] == pytest.approx(concrete.mc2010_fracture_energy(42.3e6)) and m["Gf_mean"] == t["G_F"]
     for k in ("E", "f_t"):
@@ -57,6 +64,11 @@ def test_gregoire_concrete_calibrated_on_a_coarse_prism_meets_its_targets_and_is
     # eps_p = f_t / E gives a prism 18 % too weak at this module: the rounds did something.
     assert m["eps_p"] > 1.15 * 3.9e6 / 37e9
     assert (m["E"], m["eps_p"]) == pytest.approx(PINNED, rel=1e-6)
+
+
+def test_a_bad_property_on_the_command_line_is_one_line(cli):
+    p = cli("study", "calibration", "--E", "37e9", "--nu", "0.5", "--ft", "3.9e6", "--fc", "42.3e6", "--L0", "0.01")
+    assert p.returncode == 2 and p.stderr == "ldem study: error: nu must be in (0, 0.5) (got 0.5)\n", p.stderr
 
 
 def test_the_next_eps_p_is_proportional_first_then_the_secant():

@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from conftest import FAST, ROOT, colour_share, picture, undamaged_on_white
+from ldem.study.registry import STUDIES
 
 BAD_INPUT = [
     (["--size", "-0.12"], "size must be > 0 (got -0.12 m)"),
@@ -195,7 +196,7 @@ def test_bench_too_big_for_the_machine_is_one_line(cli):
 
 
 
-@pytest.mark.parametrize("command", [["cube"], ["study", "size-effect"], ["study", "damping"], ["bench"], ["rerun"]])
+@pytest.mark.parametrize("command", [["cube"], *(["study", name] for name in STUDIES), ["bench"], ["rerun"]])
 def test_help_gives_each_default_once_and_only_a_real_one(cli, command):
     r = cli(*command, "--help")
     assert r.returncode == 0

@@ -286,7 +286,7 @@ def test_threads_per_case_are_the_studys():
     import argparse
     import os
 
-    from ldem.study.command import _common
+    from ldem.study.options import common_settings as _common
 
     def args(**kw):
         base = dict(threads=0, scheduler=None, jobs=1, strain_rate=0.02, set=[])

@@ -4,19 +4,25 @@ its strain, damaged and broken bars at the peak (pre-peak nonlinearity) and
 where the damage is (mean height of the damaged-or-broken bars over H, and
 the share within one module of the lower face), kept in the case's
 summary.json under "ablation"; ablation.jsonl (a line per run) and the
-markdown table of the means per load and variant, against "base"."""
+markdown table of the means per load and variant, against "base".
+
+    ldem study ablation --out DIR [--size 0.48] [--seeds 3] [--loads L,..] [--variants V,..] [--jobs J]
+    ldem study ablation --table RUNS.jsonl      the markdown table of those runs"""
 from __future__ import annotations
 
 import json
 import os
+import sys
 from typing import Callable, List, Sequence
 
 import numpy as np
 
 from .. import io
 from ..cube import CubeTest
+from .options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
 from .cases import Named, case_name
 from .executors import run_cases
+from .registry import Study, register
 
 VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
             "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9},
@@ -93,3 +99,36 @@ def ablation_table(runs: Sequence[dict]) -> str:
                          f"{np.mean([r['damaged_at_peak'] for r in g]):.0f} / "
                          f"{np.mean([r['broken_at_peak'] for r in g]):.0f} | {max(r['energy_error'] for r in g):.1e} |")
     return "\n".join(lines) + "\n"
+
+
+def add_arguments(a) -> None:
+    a.add_argument("--out", default="", metavar="DIR", help="study folder (cases/, ablation.jsonl, ablation.md); "
+                                                            "required to run")
+    parameter_option(a, "size", default=0.48)
+    add_seeds(a, "load and variant")
+    a.set_defaults(seeds=3)
+    add_loads(a)
+    a.add_argument("--variants", default=",".join(VARIANTS), help=f"comma-separated, of: {', '.join(VARIANTS)}")
+    a.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once in separate processes")
+    parameter_option(a, "threads", note="; per case")
+    a.add_argument("--table", default="", metavar="RUNS.jsonl", help="run nothing: print the table of those runs")
+
+
+def cmd_ablation(args) -> int:
+    """Prints one JSON line per run (also in OUT/ablation.jsonl) and the table (OUT/ablation.md)."""
+    if args.table:
+        print(ablation_table(read_runs(args.table)), end="")
+        return 0
+    if not args.out:
+        raise ValueError("--out DIR: the study folder (or --table RUNS.jsonl)")
+    variants = parse_names(args.variants, VARIANTS, "variant", "some of " + ", ".join(VARIANTS))
+    runs = [(ld, v) for ld in parse_loads(args.loads) for v in variants]
+    tests = ablation_tests(args.size, range(1, seed_count(args) + 1), args.threads, runs)
+    check_tests([t.cube for t in tests])
+    rows = run_ablation(tests, args.out, args.jobs, log=lambda s: print(s, file=sys.stderr))
+    print("".join(json.dumps(r) + "\n" for r in rows) + ablation_table(rows), end="")
+    return 0
+
+
+register(Study("ablation", "one factor at a time on a cube, both loads, each run stopped past its peak",
+               add_arguments, cmd_ablation))

@@ -16,12 +16,16 @@ A material is a dict of the parameter table's material names (E, nu,
 Gf_mean, Gf_cv, law, ...)."""
 from __future__ import annotations
 
+import json
 import statistics
 from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
+from .. import io
 from ..specimen import SpecimenTest
+from .options import parameter_option, seed_count
+from .registry import Study, register
 
 PRISM = (0.05, 0.05, 0.10)  # width, thickness, height [m]
 AREA = PRISM[0] * PRISM[1]
@@ -207,3 +211,34 @@ def work_of_fracture(curve: dict) -> float:
     F = np.asarray(curve["stress_MPa"]) * 1e6  # the force of area 1 [N]
     delta = np.asarray(curve["mean_strain"]) * D
     return float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(delta))) / ((1 - RILEM["notch"]) * D * D)
+
+
+def add_arguments(c) -> None:
+    lab = "; the concrete's, as the laboratory reports it"
+    parameter_option(c, "E", "--E", lab, default=None, required=True)
+    parameter_option(c, "nu", "--nu", lab, default=None, required=True)
+    c.add_argument("--ft", type=float, required=True, help="direct tensile strength [Pa]")
+    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa] (for G_F if not given)")
+    c.add_argument("--GF", type=float, default=None, help="total fracture energy [N/m] (default: fib MC2010's)")
+    parameter_option(c, "rho", "--rho", lab)
+    parameter_option(c, "L0", "--L0", "; the module of the structure to model", default=None, required=True)
+    c.add_argument("--seeds", type=int, default=3, help="prisms per round (seeds 1..N)")
+    c.add_argument("--out", default="", metavar="FILE", help="write the result here (JSON)")
+
+
+def cmd_calibration(args) -> int:
+    """Prints each prism and round, then the result (JSON), also written to --out."""
+    result = calibrate(args.E, args.nu, args.ft, args.fc, args.GF, args.rho, args.L0,
+                       range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
+    text = json.dumps(result, indent=1)
+    print(text)
+    if args.out:
+        io.write_text(args.out, text + "\n")
+    return 0
+
+
+register(Study("calibration", "the lattice material of a concrete from what a laboratory reports (E, nu, f_t, "
+                              "f_c or G_F), by the virtual prism", add_arguments, cmd_calibration,
+               "Runs the virtual direct tension prism (seeds 1..N, to its load loss) until its E and f_t are "
+               "within 1 % of the targets (doc/calibration.md); use the parameters under [material] of a "
+               "specimen file with the same L0."))

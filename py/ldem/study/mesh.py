@@ -6,7 +6,7 @@ The criterion (LDEM_SPEC section 6): a module of side L carries the
 stress-strain law of a specimen of side L, with the fracture-area coefficient
 corrected by the diffuse cracking measured at that size,
 c_a(L) = c_a x E[U_num/U_min](L). The law of a coarse bar is the study's
-triangle, fixed by eps_p, the G_f field and c_a; `criterion_law` maps the
+triangle, fixed by eps_p, the G_f field and c_a; `mesh_tables.criterion_law` maps the
 fine cubes of side L (uniform load, six seeds, to separation) onto them:
 
     eps_p(L)   = mean peak stress(L) / E        a coarse bar starts to soften at
@@ -35,7 +35,7 @@ a cube of CALIBRATION_SIZE (never a target), against the fine lattice's,
     c_a'(L)   = c_a x fine U_num/U_min / coarse U_num/U_min
     CV(G_f)   = the material's
 
-(`calibrated_law`), so that what the coarse mesh adds or loses by itself
+(`mesh_tables.calibrated_law`), so that what the coarse mesh adds or loses by itself
 (brittler bars clamped, a softer surface layer, cracking of its own) is
 measured instead of assumed to vanish."""
 from __future__ import annotations
@@ -48,8 +48,12 @@ from .. import io
 from ..cube import CubeTest
 from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
 from .mesh_report import write_mesh_report
-from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, summarize
-from .tables import case_row, mean_cv
+from .options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
+                      parse_loads, parse_names, run_options, seed_count, values_option)
+from .registry import Study, register
+from .mesh_tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
+                          summarize, variant_law)
+from .tables import case_row
 
 MESH_SIZES = (0.48, 0.72, 0.96)      # the cubes predicted with coarse modules [m]
 COARSE_MODULES = (0.04, 0.06, 0.08, 0.12)
@@ -59,55 +63,6 @@ UNIFORM_FINAL_STRAIN = 3.0           # a cube of a few modules separates late (0
 LAW_COLUMNS = ("module_m", "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean",
                "strain_at_peak_cv", "U_ratio_mean", "U_ratio_cv", "eps_p", "Gf_mean", "Gf_cv", "c_a",
                "calibration_peak_ratio", "calibration_U_ratio", "calibrated_eps_p", "calibrated_c_a")
-
-
-def _round(x: float, digits: int = 4) -> float:
-    return float(f"{x:.{digits}g}")
-
-
-def criterion_law(fine_rows: Sequence[dict], base: CubeTest) -> dict:
-    """The coarse bars' law for modules of side L from the rows (case_row) of
-    the fine uniform cubes of side L: the statistics it used and the law
-    (eps_p, Gf_mean, Gf_cv, c_a), as in the module's docstring."""
-    separated = [r for r in fine_rows if r["separated"] in (True, "True")]
-    if len(separated) < 2:
-        raise ValueError(f"{len(separated)} of the fine cubes of side {fine_rows[0]['size_m']:g} m separated: "
-                         "the criterion needs E[U_num/U_min] and its CV over at least two")
-    peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in fine_rows])
-    strain, strain_cv = mean_cv([r["strain_at_peak"] for r in fine_rows])
-    ratio, ratio_cv = mean_cv([r["U_ratio"] for r in separated])
-    return {"module_m": fine_rows[0]["size_m"], "seeds": len(fine_rows), "separated": len(separated),
-            "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain,
-            "strain_at_peak_cv": strain_cv, "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv,
-            "eps_p": _round(peak * 1e6 / base.E), "Gf_mean": base.Gf_mean, "Gf_cv": _round(ratio_cv),
-            "c_a": _round(base.c_a * ratio)}
-
-
-def calibrated_law(fine_rows: Sequence[dict], coarse_rows: Sequence[dict], base: CubeTest) -> dict:
-    """The calibrated variant's eps_p and c_a for one module size, from the
-    fine and the coarse (plain law) cubes of CALIBRATION_SIZE: ratios of their
-    mean peaks and of their mean U_num/U_min (separated specimens)."""
-    def means(rows):
-        sep = [r["U_ratio"] for r in rows if r["separated"] in (True, "True")]
-        if len(sep) < 2:
-            raise ValueError(f"{len(sep)} calibration cubes separated: the calibrated variant needs two")
-        return mean_cv([r["peak_stress_MPa"] for r in rows])[0], mean_cv(sep)[0]
-    (fine_peak, fine_u), (coarse_peak, coarse_u) = means(fine_rows), means(coarse_rows)
-    return {"calibration_peak_ratio": fine_peak / coarse_peak, "calibration_U_ratio": fine_u / coarse_u,
-            "calibrated_eps_p": _round(base.eps_p * fine_peak / coarse_peak),
-            "calibrated_c_a": _round(base.c_a * fine_u / coarse_u)}
-
-
-def variant_law(variant: str, law: dict, base: CubeTest) -> dict:
-    """The CubeTest fields a variant changes: none (plain), eps_p and G_f's
-    statistics (law), c_a (c_a), all of them (criterion), or eps_p and c_a
-    from the calibration (calibrated)."""
-    keys = {"plain": (), "law": ("eps_p", "Gf_mean", "Gf_cv"), "c_a": ("c_a",),
-            "criterion": ("eps_p", "Gf_mean", "Gf_cv", "c_a"), "calibrated": ("calibrated_eps_p", "calibrated_c_a")}
-    if variant not in keys:
-        raise ValueError(f"unknown variant '{variant}' (expected one of {', '.join(VARIANTS)})")
-    fields = {k: k.replace("calibrated_", "") for k in keys[variant]}
-    return {f: law[k] for k, f in fields.items() if law[k] != getattr(base, f)}
 
 
 def load_settings(load: str, reference: bool = False) -> dict:
@@ -256,3 +211,55 @@ def earlier_laws(folder: str, modules, calibrate: bool, out: str) -> Dict[float,
     io.write_table(os.path.join(out, "laws.csv"), list(laws.values()), LAW_COLUMNS)
     return laws
 
+
+
+def add_arguments(m) -> None:
+    add_common(m)
+    values_option(m, "size", "--sizes", MESH_SIZES, "; the cubes to predict")
+    values_option(m, "L0", "--modules", COARSE_MODULES, "; the coarse modules L")
+    m.add_argument("--variants", default=",".join(VARIANTS),
+                   help="plain: the fine law; law: eps_p and CV(G_f) from the fine cube of side L; "
+                        "c_a: the corrected c_a only; criterion: both; calibrated: eps_p and c_a from the "
+                        "coarse and the fine lattice on the calibration cube")
+    add_seeds(m)
+    m.add_argument("--law-seeds", dest="law_seeds", type=int, default=6,
+                   help="specimens of each cube that gives a law (fine cubes of side L, calibration cubes)")
+    m.add_argument("--reference", action="append", default=[], metavar="DIR",
+                   help="a size-effect study folder whose finished fine cases are used instead of running "
+                        "them (repeatable)")
+    m.add_argument("--calibration-size", dest="calibration_size", type=float, default=CALIBRATION_SIZE,
+                   help="the cube on which the calibrated variant measures the coarse lattice against the fine [m]")
+    add_rerun_options(m, "its laws.csv gives the laws (no law cube runs) and the cases of its cases.csv "
+                                 "are not run again and enter the tables as they are")
+
+
+def cmd_mesh(args) -> int:
+    variants = parse_names(args.variants, VARIANTS, "variant", "some of " + ", ".join(VARIANTS))
+    for ref in args.reference:
+        if not os.path.isdir(os.path.join(ref, "cases")):
+            raise ValueError(f"--reference {ref}: not a study folder (no cases/ in it)")
+    common = common_settings(args)
+    for name in ("L0", "eps_p", "Gf_mean", "Gf_cv", "c_a"):
+        if name in common:
+            raise ValueError(f"--set {name}: the mesh study sets it (from the criterion)")
+    if args.law_seeds < 2:
+        raise ValueError(f"--law-seeds must be at least 2: the law needs a mean and a CV (got {args.law_seeds})")
+    table = run_mesh(args.out, parse_floats(args.sizes, "--sizes"), parse_floats(args.modules, "--modules"),
+                     variants, parse_loads(args.loads), seed_count(args), args.reference,
+                     run=not args.report_only, report=not args.no_report, common=common, fmt=args.figure_format,
+                     calibration_size=args.calibration_size, law_seeds=args.law_seeds, earlier=args.earlier,
+                     **run_options(args))
+    print(f"mesh study: wrote {args.out}/laws.csv, cases.csv, summary.csv"
+          + ("" if args.no_report else ", report.md and figures"))
+    for t in table:
+        print(f"  {t['load']:10s} {t['size_m']:.2f} m, L {t['module_m']:.3f} m, {t['variant']:9s}: "
+              f"peak {t['peak_stress_MPa_mean']:.3f} MPa" + (f" ({t['peak_vs_fine']:.3f} of fine)"
+                                                              if t["peak_vs_fine"] != "" else "")
+              + ("" if t["U_ratio_mean"] == "" else f", U_num/U_min {t['U_ratio_mean']:.3f}")
+              + ("" if t["U_vs_fine"] == "" else f" ({t['U_vs_fine']:.3f} of fine)"))
+    return 0
+
+
+register(Study("mesh", "large cubes with coarse modules and the study's criterion, against the fine lattice",
+               add_arguments, cmd_mesh, "Fine cubes of side L give the law of a coarse module of side L "
+                                        "(ldem/study/mesh.py); coarse runs of each variant against the fine lattice."))

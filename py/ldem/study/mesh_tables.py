@@ -1,4 +1,6 @@
-"""The mesh study's tables: means and CVs per (load, size, module, variant,
+"""The mesh study's laws (laws.csv: the coarse bars' law for each module
+side L, by the criterion and by the calibration; the mesh module's docstring
+has the equations) and its tables: means and CVs per (load, size, module, variant,
 correlation length), each beside the fine lattice's, and the verdict of
 issue 15 (fine peak within 10 %, fine U_num within 20 %)."""
 from __future__ import annotations
@@ -7,6 +9,7 @@ from typing import List, Sequence
 
 import numpy as np
 
+from ..cube import CubeTest
 from .tables import mean_cv
 
 FINE_L0 = 0.02                       # the size-effect study's module [m]
@@ -19,6 +22,55 @@ SUMMARY_COLUMNS = GROUP + (
     "U_vs_fine", "speedup", "bar_steps_mean", "work_ratio")
 PEAK_TOLERANCE, U_TOLERANCE = 0.10, 0.20   # issue 15's verdict
 
+
+
+def _round(x: float, digits: int = 4) -> float:
+    return float(f"{x:.{digits}g}")
+
+
+def criterion_law(fine_rows: Sequence[dict], base: CubeTest) -> dict:
+    """The coarse bars' law for modules of side L from the rows (case_row) of
+    the fine uniform cubes of side L: the statistics it used and the law
+    (eps_p, Gf_mean, Gf_cv, c_a), as in the docstring of ldem.study.mesh."""
+    separated = [r for r in fine_rows if r["separated"] in (True, "True")]
+    if len(separated) < 2:
+        raise ValueError(f"{len(separated)} of the fine cubes of side {fine_rows[0]['size_m']:g} m separated: "
+                         "the criterion needs E[U_num/U_min] and its CV over at least two")
+    peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in fine_rows])
+    strain, strain_cv = mean_cv([r["strain_at_peak"] for r in fine_rows])
+    ratio, ratio_cv = mean_cv([r["U_ratio"] for r in separated])
+    return {"module_m": fine_rows[0]["size_m"], "seeds": len(fine_rows), "separated": len(separated),
+            "peak_stress_MPa_mean": peak, "peak_stress_MPa_cv": peak_cv, "strain_at_peak_mean": strain,
+            "strain_at_peak_cv": strain_cv, "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv,
+            "eps_p": _round(peak * 1e6 / base.E), "Gf_mean": base.Gf_mean, "Gf_cv": _round(ratio_cv),
+            "c_a": _round(base.c_a * ratio)}
+
+
+def calibrated_law(fine_rows: Sequence[dict], coarse_rows: Sequence[dict], base: CubeTest) -> dict:
+    """The calibrated variant's eps_p and c_a for one module size, from the
+    fine and the coarse (plain law) cubes of CALIBRATION_SIZE: ratios of their
+    mean peaks and of their mean U_num/U_min (separated specimens)."""
+    def means(rows):
+        sep = [r["U_ratio"] for r in rows if r["separated"] in (True, "True")]
+        if len(sep) < 2:
+            raise ValueError(f"{len(sep)} calibration cubes separated: the calibrated variant needs two")
+        return mean_cv([r["peak_stress_MPa"] for r in rows])[0], mean_cv(sep)[0]
+    (fine_peak, fine_u), (coarse_peak, coarse_u) = means(fine_rows), means(coarse_rows)
+    return {"calibration_peak_ratio": fine_peak / coarse_peak, "calibration_U_ratio": fine_u / coarse_u,
+            "calibrated_eps_p": _round(base.eps_p * fine_peak / coarse_peak),
+            "calibrated_c_a": _round(base.c_a * fine_u / coarse_u)}
+
+
+def variant_law(variant: str, law: dict, base: CubeTest) -> dict:
+    """The CubeTest fields a variant changes: none (plain), eps_p and G_f's
+    statistics (law), c_a (c_a), all of them (criterion), or eps_p and c_a
+    from the calibration (calibrated)."""
+    keys = {"plain": (), "law": ("eps_p", "Gf_mean", "Gf_cv"), "c_a": ("c_a",),
+            "criterion": ("eps_p", "Gf_mean", "Gf_cv", "c_a"), "calibrated": ("calibrated_eps_p", "calibrated_c_a")}
+    if variant not in keys:
+        raise ValueError(f"unknown variant '{variant}' (expected one of {', '.join(VARIANTS)})")
+    fields = {k: k.replace("calibrated_", "") for k in keys[variant]}
+    return {f: law[k] for k, f in fields.items() if law[k] != getattr(base, f)}
 
 def _group_stats(g: Sequence[dict]) -> dict:
     peak, peak_cv = mean_cv([r["peak_stress_MPa"] for r in g])

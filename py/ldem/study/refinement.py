@@ -13,7 +13,10 @@ from typing import List, Sequence
 from .. import io
 from ..cube import CubeTest
 from .cases import read_discussion
-from .located import MESH_CASE_COLUMNS, finished_rows
+from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier
+from .options import (add_common, add_rerun_options, add_seeds, check_tests, common_settings,
+                      parse_floats, parse_loads, run_options, seed_count, values_option)
+from .registry import Study, register
 from .mesh import load_settings
 from .mesh_tables import FINE_L0, SUMMARY_COLUMNS, summarize
 
@@ -101,3 +104,40 @@ def write_refinement_report(out: str, table, missing: int, fmt: str = "png", kep
           "", f"![refinement](refinement.{fmt})", ""]
     md += [read_discussion(out)]
     io.write_text(os.path.join(out, "report.md"), "\n".join(md) + "\n")
+
+
+def add_arguments(r) -> None:
+    add_common(r)
+    r.set_defaults(loads="uniform")
+    values_option(r, "size", "--sizes", REFINEMENT)
+    values_option(r, "L0", "--L0s", (), "; for every size (default: 0.02,0.01,0.0075,0.005 for 0.12 m; "
+                                        "0.02,0.01,0.005 for 0.24 m)", metavar="L0,...")
+    values_option(r, "corr_length", "--corr-lengths", CORR_LENGTHS)
+    add_seeds(r)
+    add_rerun_options(r, "the cases of its cases.csv are not run again and enter the tables as they are")
+
+
+def cmd_refinement(args) -> int:
+    sizes = parse_floats(args.sizes, "--sizes")
+    grid = {s: (tuple(parse_floats(args.L0s, "--L0s")) if args.L0s else REFINEMENT.get(s, ())) for s in sizes}
+    for s, modules in grid.items():
+        if not modules:
+            raise ValueError(f"no default modules for a {s:g} m cube: give --L0s")
+    common = common_settings(args)
+    if "L0" in common or "corr_length" in common:
+        raise ValueError("--set L0 / corr_length: the refinement study sets them (use --L0s, --corr-lengths)")
+    tests = refinement_tests(grid, parse_floats(args.corr_lengths, "--corr-lengths"), parse_loads(args.loads),
+                             seed_count(args), **common)
+    check_tests(tests)
+    table = run_refinement(tests, args.out, run=not args.report_only, report=not args.no_report,
+                           fmt=args.figure_format, earlier=read_earlier(args.earlier), **run_options(args))
+    print(f"refinement study: wrote {args.out}/cases.csv, summary.csv"
+          + ("" if args.no_report else ", report.md and refinement.png"))
+    for t in table:
+        print(f"  {t['load']:10s} {t['size_m']:.2f} m, L0 {t['module_m']:g} m, l_c {t['corr_length_m']:g} m: "
+              f"peak {t['peak_stress_MPa_mean']:.3f} MPa at {t['strain_at_peak_mean']:.3e}"
+              + ("" if t["U_ratio_mean"] == "" else f", U_num/U_min {t['U_ratio_mean']:.3f}"))
+    return 0
+
+
+register(Study("refinement", "the same cubes with modules finer than the study's", add_arguments, cmd_refinement))

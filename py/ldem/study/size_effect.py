@@ -5,12 +5,16 @@ from __future__ import annotations
 
 import json
 import os
+import time
 from typing import Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
-from .cases import load_case, load_curves, read_discussion
+from .cases import load_case, load_curves, read_discussion, size_effect_tests
 from .executors import run_cases
+from .options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
+                      parse_loads, seed_count, values_option)
+from .registry import Study, register
 from .tables import CASE_COLUMNS, SUMMARY_COLUMNS, aggregate, case_row, fractal_fits
 
 STUDY_SIZES = (0.12, 0.24, 0.48, 0.72, 0.96)
@@ -41,3 +45,36 @@ def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, f
     report.size_effect_report(out, [load_case(out, t) for t in tests], rows, table, fits,
                               damping_rows=io.read_table(damping_csv) if os.path.exists(damping_csv) else None,
                               discussion=read_discussion(out) or None, fmt=fmt)
+
+
+def add_arguments(s) -> None:
+    add_common(s)
+    values_option(s, "size", "--sizes", STUDY_SIZES)
+    add_seeds(s, "size and load")
+
+
+def cmd_size_effect(args) -> int:
+    sizes = parse_floats(args.sizes, "--sizes")
+    tests = size_effect_tests(sizes, seed_count(args), parse_loads(args.loads), **common_settings(args))
+    check_tests(tests)
+    t0 = time.perf_counter()
+    table, fits = run_size_effect(tests, args.out, jobs=args.jobs, scheduler=args.scheduler,
+                                  progress=False if args.no_progress else None, report=not args.no_report,
+                                  figure_format=args.figure_format)
+    print(f"study: {len(tests)} cases in {time.perf_counter() - t0:.0f} s; wrote {args.out}/summary.csv, cases.csv"
+          + ("" if args.no_report else ", report.md and figures"))
+    for r in table:
+        print(f"  {r['load']:10s} {r['size_m']:.2f} m: peak {r['peak_stress_MPa_mean']:.3f} MPa "
+              f"(cv {r['peak_stress_MPa_cv']:.3f}) at {r['strain_at_peak_mean']:.3e}, "
+              + (f"U_num/U_min {r['U_ratio_mean']:.3f}" if r["separated"] else "U_num -")
+              + f" ({r['separated']} of {r['seeds']} separated), at load loss "
+              + (f"{r['U_loss_ratio_mean']:.3f}" if r["U_loss_ratio_mean"] != "" else "-")
+              + f", cheapest cut {r['U_mincut_ratio_mean']:.3f}"
+              + (f", {r['energy_errors']} ENERGY ERRORS" if r["energy_errors"] else ""))
+    for load, fit in fits.items():
+        print(f"  fractal fit ({load}): d = {fit['d']:.3f} (energy per unit area: b^{fit['d_specific']:.3f})")
+    return 0
+
+
+register(Study("size-effect", "sizes x seeds x loads: tables, curves, cracks, energies, fractal fit",
+               add_arguments, cmd_size_effect))

@@ -5,7 +5,12 @@ specimens each stopped past their peak; the peak load (mean, CV), the curves
 and the crack pictures, written before any measurement is seen.
 
 OUT/material.json: the calibration; OUT/cases/s{seed}/: the runs (seed 1 with
-its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's)."""
+its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's).
+
+    ldem study validation NAME [--calibrate-only] [--seeds 6] [--jobs J] [--out OUT] [--root .]
+
+NAME: l_panel (Winkler et al. 2001) or eccentric_notch_beam (García-Álvarez et
+al. 2012); OUT: ROOT/results/validation/NAME. Finished cases are not run again."""
 from __future__ import annotations
 
 import json
@@ -23,6 +28,8 @@ from .concrete import calibrate
 from .beams import PastThePeak
 from .cases import Named
 from .executors import run_cases
+from .options import add_seeds, seed_count
+from .registry import Study, register
 
 
 @dataclass(frozen=True)
@@ -125,3 +132,26 @@ def _figure(out: str, name: str, curves: dict, seeds: int, x_label: str) -> None
     ax.set_title(f"{name}: blind prediction, {seeds} specimens")
     ax.legend(fontsize=8)
     plots.save(fig, os.path.join(out, "curves.png"))
+
+
+def add_arguments(v) -> None:
+    v.add_argument("name", choices=sorted(SPECIMENS), metavar="NAME", help=", ".join(sorted(SPECIMENS)))
+    v.add_argument("--calibrate-only", action="store_true", help="OUT/material.json only: run no specimen")
+    add_seeds(v, "prediction")
+    v.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each")
+    v.add_argument("--root", default=".", metavar="DIR", help="the repository, whose examples/ hold the files")
+    v.add_argument("--out", default="", metavar="OUT", help="the folder (default: ROOT/results/validation/NAME)")
+
+
+def cmd_validation(args) -> int:
+    out = args.out or os.path.join(args.root, "results", "validation", args.name)
+    log = lambda s: print(s, flush=True)  # noqa: E731
+    if args.calibrate_only:
+        material(args.root, args.name, out, log)
+    else:
+        print(predict(args.root, args.name, out, seed_count(args), args.jobs, log))
+    return 0
+
+
+register(Study("validation", "blind predictions of laboratory tests: a specimen file, its concrete calibrated, "
+                             "six specimens past their peak", add_arguments, cmd_validation))
