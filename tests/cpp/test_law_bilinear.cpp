@@ -135,7 +135,7 @@ TEST(BilinearLaw, SnapBackIsClamped) {
 
 TEST(BilinearLaw, SimulationSelectsItByTheLawParameter) {
     Material m;
-    m.law = SofteningLaw::Bilinear;
+    m.law = barLawId<BilinearLaw>();
     const LoadingParams lp;
     const RunParams rp;
     const Simulation sim(cubeTestSpecimen(2, 2, 2, 0.02, m, lp), m, lp, rp);
