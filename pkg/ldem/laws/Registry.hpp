@@ -16,11 +16,12 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Material.hpp"
 #include "ldem/laws/Bilinear.hpp"
+#include "ldem/laws/Exponential.hpp"
 #include "ldem/laws/Hillerborg.hpp"
 
 namespace ldem {
 
-using BarLaws = std::variant<HillerborgLaw, BilinearLaw>;
+using BarLaws = std::variant<HillerborgLaw, BilinearLaw, ExponentialLaw>;
 
 // The laws' names, in registry order: the choices of the `law` parameter (barLawNames).
 template <std::size_t... I>
