@@ -190,12 +190,9 @@ private:
         a.emplace_back("eps_r", &self.epsR);
         return a;
     }
-    static Bar barAt(const std::array<const double*, N>& columns, std::int64_t p) {
-        Bar v;
-        for (std::size_t i = 0; i < N; ++i) v[i] = columns[i][p];
-        return v;
-    }
-    static Bar barAt(const std::array<std::vector<double>, N>& columns, std::int64_t b) {
+    // Bar b's shape parameters from their columns (the law's vectors, or a row's pointers).
+    template <class Columns>
+    static Bar barAt(const Columns& columns, std::int64_t b) {
         Bar v;
         for (std::size_t i = 0; i < N; ++i) v[i] = columns[i][b];
         return v;
