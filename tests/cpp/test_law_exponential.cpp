@@ -8,6 +8,7 @@
 #include <cmath>
 #include <vector>
 
+#include "StudyBar.hpp"
 #include "ldem/ParameterTable.hpp"
 #include "ldem/Simulation.hpp"
 #include "ldem/laws/Exponential.hpp"
@@ -18,12 +19,7 @@ using namespace ldem::exponential;
 namespace {
 
 // One normal bar of the study's material.
-struct Bar {
-    double L = 0.02;
-    double EA = 3.5e10 * 0.4 * 0.02 * 0.02;
-    double Af = 0.1385 * 0.02 * 0.02;
-    double Gf = 100.0;
-    double epsP = 6.3e-5;
+struct Bar : StudyBar {
     SofteningStrains s() const { return softeningStrains(Af, Gf, EA, epsP, L); }
     double envelope(double eps) const { return exponentialForce(eps, eps, EA, epsP, s().epsS, s().epsR); }
     double dissipated(double kappa) const { return exponentialDissipated(kappa, EA, epsP, s().epsS, s().epsR, L); }

@@ -9,6 +9,7 @@
 #include <numeric>
 #include <vector>
 
+#include "StudyBar.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
@@ -21,13 +22,8 @@ using namespace ldem::hillerborg;
 
 namespace {
 
-// One normal bar of the study's material: L0 = 0.02, A_n = 0.4 L0^2, A_f = c_a L0^2.
-struct Bar {
-    double L = 0.02;
-    double EA = 3.5e10 * 0.4 * 0.02 * 0.02;  // 5.6e6 N
-    double Af = 0.1385 * 0.02 * 0.02;
-    double Gf = 100.0;
-    double epsP = 6.3e-5;
+// One normal bar of the study's material.
+struct Bar : StudyBar {
     double epsR() const { return limitStrain(Af, Gf, EA, epsP, L).epsR; }
 };
 
