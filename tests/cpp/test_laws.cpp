@@ -44,6 +44,8 @@ void realisedBarsDissipateTheirOwnAfGf() {
         EXPECT_NEAR(law.dissipated(b, t.EA[b], t.L[b], past), expected, 1e-12 * expected) << Law::name << " bar " << b;
         EXPECT_EQ(law.damage(b, past), DamageState::Broken) << Law::name;
         EXPECT_EQ(law.stored(b, t.EA[b], t.L[b], past), 0.0) << Law::name;
+        // one that would snap back whole is perfectly brittle: no force at all once past eps_p
+        if (snapsBack) EXPECT_EQ(law.stored(b, t.EA[b], t.L[b], 1.001 * m.epsP), 0.0) << Law::name << " bar " << b;
         // Unloaded and undamaged: intact, elastic force EA eps.
         EXPECT_TRUE(law.intact(b)) << Law::name;
         EXPECT_DOUBLE_EQ(law.force(b, t.EA[b], -1e-4), -1e-4 * t.EA[b]) << Law::name;
