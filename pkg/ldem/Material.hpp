@@ -9,12 +9,9 @@
 
 namespace ldem {
 
-// The softening law of the bars, in the order of BarLaws (laws/Registry.hpp).
-enum class SofteningLaw { Hillerborg, Bilinear };
-
 // LDEM_MATERIAL_PARAMETERS (Parameters.hpp): E, nu, rho, G_f (mean, CV,
 // correlation length, per bar or per module), eps_p, c_a,
-// the softening law and the bilinear law's kink.
+// the softening law (a BarLawId: laws/Registry.hpp) and the laws' constants.
 struct Material {
     LDEM_MATERIAL_PARAMETERS(LDEM_DECLARE_MEMBER)
     // Throws std::invalid_argument with a one-line message on bad input.

@@ -51,8 +51,13 @@
     X(double, ca, "c_a", 0.1385, "", Domain::openClosed(0, 1),                                               \
       "fracture-area coefficient c_a (A_f = c_a L0^2); at most 1: a bar's fracture area at most a module's face "\
       "(0.1385 makes one crack across a module dissipate G_f L0^2); a small c_a makes bars brittle (Gf_mean)")   \
-    X(SofteningLaw, law, "law", SofteningLaw::Hillerborg, "", Domain::choices({"hillerborg", "bilinear"}),     \
-      "softening law of a bar: Hillerborg's triangle, or bilinear (kink_stress, Gf_ratio; fib MC2010)")         \
+    X(BarLawId, law, "law", BarLawId{}, "", Domain::choices(barLawNames()),                                    \
+      "softening law of a bar (one header each in pkg/ldem/laws/; the bilinear law's constants: kink_stress, " \
+      "Gf_ratio)")                                                                                             \
+    LDEM_BILINEAR_LAW_PARAMETERS(X)
+
+// The bilinear law's constants (laws/Bilinear.hpp).
+#define LDEM_BILINEAR_LAW_PARAMETERS(X)                                                                      \
     X(double, kinkStress, "kink_stress", 0.2, "", Domain::openClosed(0, 1),                                   \
       "bilinear law: force at the kink over the peak force (MC2010: 0.2)")                                      \
     X(double, GfRatio, "Gf_ratio", 0.625, "", Domain::openClosed(0, 1),                                       \
@@ -207,6 +212,11 @@ struct Domain {
 };
 
 std::string formatNumber(double x);  // shortest form of 6 significant digits
+
+// The bar laws by name, in the registry's order (laws/Registry.hpp): the choices of `law`,
+// whose value is a BarLawId, the law's index in the registry.
+enum class BarLawId : std::uint8_t {};
+std::vector<std::string> barLawNames();
 
 template <class T>
 void checkParameter(const char* name, const char* unit, const T& value, const Domain& d) {

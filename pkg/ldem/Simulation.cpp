@@ -70,7 +70,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
 
     // Random G_f -> the law's per-bar parameters (the field itself is not kept).
     {
-        law_ = makeBarLaw(std::size_t(mat_.law), lat_, mat_, fractureEnergyField());
+        law_ = makeBarLaw(mat_.law, lat_, mat_, fractureEnergyField());
         // each bar counted by the rank that owns it
         clamped_ = commOf(lat_).sum(std::visit([](const auto& law) { return law.clampedOwnedBars(); }, law_));
         const auto owned = lat_.ownedBars();

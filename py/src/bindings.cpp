@@ -331,6 +331,8 @@ PYBIND11_MODULE(_core, m) {
           }, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("bytes"),
           "why the whole nx x ny x nz lattice does not fit one process of `bytes` of memory ('' if it does)");
 
+    // The laws' names, in registry order (laws/Registry.hpp): the choices of the `law` parameter.
+    m.attr("bar_laws") = barLawNames();
     // Every law's one-bar functions (pkg/ldem/laws/), for tests and for anyone who wants to plot them.
     forEachLawType([&](auto* law) {
         std::remove_pointer_t<decltype(law)>::singles([&](const char* name, const char* doc, auto f, auto... args) {
@@ -511,6 +513,14 @@ PYBIND11_MODULE(_core, m) {
             for (py::ssize_t i = 0; i < py::ssize_t(u.x.size()); ++i) r(i, 0) = u.x[i], r(i, 1) = u.y[i], r(i, 2) = u.z[i];
             return a;
         });
+    // The law's per-bar state through its interface (laws/BarLaw.hpp: arrays()), whatever the law.
+    sim.def("law_state", [](const Simulation& s) {
+        py::dict d;
+        std::visit([&](const auto& law) {
+            for (const auto& [name, values] : law.arrays()) d[name.c_str()] = toNumpy(*values);
+        }, s.law());
+        return d;
+    }, "the bar law's per-bar state, by name: numpy arrays (every law: kappa, the damage, and eps_r; its own)");
     // The bar laws' state by name: per-bar arrays (the Hillerborg law's kappa, eps_r) and constants (eps_p).
     forEachLawType([&](auto* law) {
         const std::remove_pointer_t<decltype(law)> names{};

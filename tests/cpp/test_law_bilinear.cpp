@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "StudyBar.hpp"
 #include "ldem/Simulation.hpp"
 #include "ldem/laws/Bilinear.hpp"
 #include "ldem/laws/Hillerborg.hpp"
@@ -15,15 +16,10 @@ using namespace ldem;
 
 namespace {
 
-// One normal bar of the study's material, with MC2010's kink (g = 0.625, s_k = 0.2).
-struct Bar {
-    double L = 0.02;
-    double EA = 3.5e10 * 0.4 * 0.02 * 0.02;
-    double Af = 0.1385 * 0.02 * 0.02;
-    double GF = 100.0;
-    double epsP = 6.3e-5;
+// One normal bar of the study's material (its G_f is the bilinear law's G_F), with MC2010's kink (g = 0.625, s_k = 0.2).
+struct Bar : StudyBar {
     double g = 0.625, sK = 0.2;
-    bilinear::KinkStrains k() const { return bilinear::kinkStrains(Af, GF, EA, epsP, L, g, sK); }
+    bilinear::KinkStrains k() const { return bilinear::kinkStrains(Af, Gf, EA, epsP, L, g, sK); }
     double envelope(double eps) const {
         return bilinear::bilinearForce(eps, eps, EA, epsP, sK, k().epsK, k().epsR);
     }
@@ -37,7 +33,7 @@ struct Bar {
 TEST(BilinearLaw, ForceOnEachBranchIsItsClosedForm) {
     const Bar b;
     const auto k = b.k();
-    const double Fp = b.EA * b.epsP, eps1 = 2 * b.g * b.Af * b.GF / (b.L * Fp);
+    const double Fp = b.EA * b.epsP, eps1 = 2 * b.g * b.Af * b.Gf / (b.L * Fp);
     ASSERT_LT(b.epsP, k.epsK);
     ASSERT_LT(k.epsK, k.epsR);
     EXPECT_FALSE(k.clamped);
@@ -60,7 +56,7 @@ TEST(BilinearLaw, RuptureDissipatesExactlyAfGF) {
         for (double sK : {0.05, 0.2, 0.33, 1.0}) {
             Bar b;
             b.g = g, b.sK = sK;
-            const double AfGF = b.Af * b.GF;
+            const double AfGF = b.Af * b.Gf;
             EXPECT_NEAR(b.dissipated(b.k().epsR), AfGF, 1e-14 * AfGF) << g << " " << sK;
             EXPECT_NEAR(b.dissipated(3 * b.k().epsR), AfGF, 1e-14 * AfGF) << g << " " << sK;
         }
@@ -80,7 +76,7 @@ TEST(BilinearLaw, DissipatedIsEnvelopeWorkMinusStored) {
         }
         eps = target;
         const double stored = 0.5 * b.envelope(eps) * eps * b.L;
-        EXPECT_NEAR(b.dissipated(eps), work - stored, 1e-9 * b.Af * b.GF) << eps;
+        EXPECT_NEAR(b.dissipated(eps), work - stored, 1e-9 * b.Af * b.Gf) << eps;
     }
 }
 
@@ -99,7 +95,7 @@ TEST(BilinearLaw, UnloadsOnItsSecantAndIsElasticInCompression) {
 TEST(BilinearLaw, WithTheWholeEnergyUnderTheInitialLineItIsTheTriangle) {
     Bar b;
     b.g = 1.0;
-    const double epsR = hillerborg::limitStrain(b.Af, b.GF, b.EA, b.epsP, b.L).epsR;
+    const double epsR = hillerborg::limitStrain(b.Af, b.Gf, b.EA, b.epsP, b.L).epsR;
     for (double sK : {0.1, 0.2, 0.5}) {
         b.sK = sK;
         const auto k = b.k();
@@ -109,7 +105,7 @@ TEST(BilinearLaw, WithTheWholeEnergyUnderTheInitialLineItIsTheTriangle) {
             const double F = hillerborg::axialForce(kappa, kappa, b.EA, b.epsP, epsR);
             EXPECT_NEAR(b.envelope(kappa), F, 1e-12 * b.EA * b.epsP) << x;
             const double D = hillerborg::dissipatedEnergy(kappa, b.EA, b.epsP, epsR, b.L);
-            EXPECT_NEAR(b.dissipated(kappa), D, 1e-12 * b.Af * b.GF) << x;
+            EXPECT_NEAR(b.dissipated(kappa), D, 1e-12 * b.Af * b.Gf) << x;
         }
     }
 }
@@ -117,15 +113,15 @@ TEST(BilinearLaw, WithTheWholeEnergyUnderTheInitialLineItIsTheTriangle) {
 TEST(BilinearLaw, SnapBackIsClamped) {
     Bar b;
     // the initial line would snap back, the whole not: a drop to the kink at eps_p, energy still A_f G_F
-    b.GF = 0.6 * b.EA * b.epsP * b.epsP * b.L / b.Af;  // 2 W / Fp = 1.2 eps_p, eps_1 = 0.6 eps_p
+    b.Gf = 0.6 * b.EA * b.epsP * b.epsP * b.L / b.Af;  // 2 W / Fp = 1.2 eps_p, eps_1 = 0.6 eps_p
     b.g = 0.5;
     auto k = b.k();
     EXPECT_TRUE(k.clamped);
     EXPECT_EQ(k.epsK, b.epsP);
-    EXPECT_NEAR(b.dissipated(k.epsR), b.Af * b.GF, 1e-14 * b.Af * b.GF);
+    EXPECT_NEAR(b.dissipated(k.epsR), b.Af * b.Gf, 1e-14 * b.Af * b.Gf);
     EXPECT_NEAR(b.envelope(b.epsP * (1 + 1e-9)), b.sK * b.EA * b.epsP, 1e-6 * b.EA * b.epsP);
     // the whole would snap back: perfectly brittle, as the triangle
-    b.GF *= 0.5;
+    b.Gf *= 0.5;
     k = b.k();
     EXPECT_TRUE(k.clamped);
     EXPECT_EQ(k.epsR, b.epsP);
@@ -135,7 +131,7 @@ TEST(BilinearLaw, SnapBackIsClamped) {
 
 TEST(BilinearLaw, SimulationSelectsItByTheLawParameter) {
     Material m;
-    m.law = SofteningLaw::Bilinear;
+    m.law = barLawId<BilinearLaw>();
     const LoadingParams lp;
     const RunParams rp;
     const Simulation sim(cubeTestSpecimen(2, 2, 2, 0.02, m, lp), m, lp, rp);

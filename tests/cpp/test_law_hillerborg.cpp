@@ -9,6 +9,7 @@
 #include <numeric>
 #include <vector>
 
+#include "StudyBar.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Parallel.hpp"
@@ -21,13 +22,8 @@ using namespace ldem::hillerborg;
 
 namespace {
 
-// One normal bar of the study's material: L0 = 0.02, A_n = 0.4 L0^2, A_f = c_a L0^2.
-struct Bar {
-    double L = 0.02;
-    double EA = 3.5e10 * 0.4 * 0.02 * 0.02;  // 5.6e6 N
-    double Af = 0.1385 * 0.02 * 0.02;
-    double Gf = 100.0;
-    double epsP = 6.3e-5;
+// One normal bar of the study's material.
+struct Bar : StudyBar {
     double epsR() const { return limitStrain(Af, Gf, EA, epsP, L).epsR; }
 };
 
@@ -442,39 +438,4 @@ TEST(HillerborgLaw, ForceLoopIsTheLawBarByBar) {
         }
         for (std::int64_t b = 0; b < nb; ++b) ASSERT_NEAR(bars.kappa[b], kappa1[b], 1e-12 * m.epsP) << "bar " << b;
     }
-}
-
-// The law realised from the material and a G_f field (what Simulation does):
-// each bar, surface edges with their share k/4 of EA and A_f, dissipates
-// exactly its own A_f G_f when it breaks (1/2 L EA eps_p^2 if clamped), and
-// the clamped count is the bars whose triangle would snap back.
-TEST(HillerborgLaw, RealisedBarsDissipateTheirOwnAfGf) {
-    Material m;
-    const Lattice lat = buildCubicLattice(3, 2, 2, 0.02, m);
-    const BarTable t = listBars(lat);
-    const std::int64_t nb = lat.numBars();
-    std::vector<double> Gf(nb);
-    for (std::int64_t b = 0; b < nb; ++b) Gf[b] = 0.5 + 150 * hashedUniform(7, b, 0);  // some bars snap back
-    const HillerborgLaw law(lat, m, Gf);
-    std::int64_t clamped = 0, surfaceEdges = 0;
-    for (std::int64_t b = 0; b < nb; ++b) {
-        const double brittle = 0.5 * t.L[b] * t.EA[b] * m.epsP * m.epsP;  // the elastic triangle up to eps_p
-        const bool snapsBack = t.Af[b] * Gf[b] < brittle;
-        clamped += snapsBack;
-        surfaceEdges += t.share[b] < 1;
-        const double expected = snapsBack ? brittle : t.Af[b] * Gf[b];
-        EXPECT_NEAR(law.ruptureEnergy(b, t.EA[b], t.L[b]), expected, 1e-12 * expected) << "bar " << b;
-        // Pulled past eps_r, it has dissipated exactly that, carries no tension and is broken.
-        const double past = 1.01 * law.epsR[b];
-        EXPECT_NEAR(law.dissipated(b, t.EA[b], t.L[b], past), expected, 1e-12 * expected) << "bar " << b;
-        EXPECT_EQ(law.damage(b, past), DamageState::Broken);
-        EXPECT_EQ(law.stored(b, t.EA[b], t.L[b], past), 0.0);
-        // Unloaded and undamaged: intact, elastic force EA eps.
-        EXPECT_TRUE(law.intact(b));
-        EXPECT_DOUBLE_EQ(law.force(b, t.EA[b], -1e-4), -1e-4 * t.EA[b]);
-    }
-    EXPECT_EQ(law.clampedOwnedBars(), clamped);
-    EXPECT_GT(clamped, 0);
-    EXPECT_LT(clamped, nb / 2);
-    EXPECT_GT(surfaceEdges, 0);
 }

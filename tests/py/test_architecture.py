@@ -234,14 +234,15 @@ def test_architecture_names_every_script_and_tool():
 
 # -- the C++ core: a bar law is one header in pkg/ldem/laws/ ----------------------------
 LAWS = os.path.join(ROOT, "pkg", "ldem", "laws")
-LAW_INTERFACE = {"BarLaw.hpp", "Registry.hpp"}  # what every law shares, and the list of them
+LAW_INTERFACE = {"BarLaw.hpp", "SecantLaw.hpp", "Registry.hpp"}  # what every law shares, and the list of them
 
 
 def _law_internals(header):
     """The names a law keeps to itself: its class, its namespace, and the functions in that namespace."""
     import re
     text = open(header).read()
-    names = set(re.findall(r"^class (\w+Law)\b", text, re.M))
+    names = set(re.findall(r"^(?:class|using) (\w+(?:Law|Shape))\b", text, re.M))
+    names |= set(re.findall(r"^struct (\w+Shape)\b", text, re.M))
     for ns in re.findall(r"^namespace (\w+) \{", text, re.M):
         if ns == "ldem":
             continue

@@ -1,7 +1,10 @@
 // What every bar law provides (laws/Hillerborg.hpp is one; laws/Registry.hpp
-// lists them). A law is one class holding its constants and the state of every
-// bar, built from the lattice, the material and the random G_f field:
+// lists them and checks the main members at compile time; laws/SecantLaw.hpp
+// writes them once for the laws that unload on a secant). A law is one class
+// holding its constants and the state of every bar, built from the lattice,
+// the material and the random G_f field:
 //
+//   static constexpr const char* name   its choice of the `law` parameter (unique);
 //   Law(lat, material, Gf)         realises the per-bar parameters (e.g. limit strains);
 //   rows()                         the row functor of the force loop (below), with its
 //                                  elastic fast path;
@@ -11,7 +14,9 @@
 //   ruptureEnergy(b, EA, L)        the energy bar b dissipates when it breaks [J];
 //   intact(b)                      bar b can still carry tension;
 //   clampedOwnedBars()             bars of this rank whose parameters had to be clamped;
-//   arrays() / softeningRows()          the state a checkpoint stores, by name;
+//   arrays() / softeningRows()     the state a checkpoint stores, by name (Python's
+//                                  sim.law_state(), bars.vtu): first "kappa", the damage
+//                                  (the largest strain), last "eps_r", the strain of rupture;
 //   constants()                    the constants common to all bars, by name;
 //   static singles(def)            its one-bar functions for Python (LAMMPS's `single`).
 //

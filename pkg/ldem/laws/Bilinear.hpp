@@ -1,4 +1,4 @@
-// A bilinear softening law for a bar (the interface: laws/BarLaw.hpp), after
+// A bilinear softening law for a bar (a SecantLaw: laws/SecantLaw.hpp), after
 // the bilinear cohesive law of concrete: fib Model Code 2010, eqs. 5.1-10/11
 // (sigma_k = 0.2 f_t at w_1 = G_F/f_t, zero at w_c = 5 G_F/f_t), and Bazant &
 // Becq-Giraudon, Cem. Concr. Res. 32 (2002) 529 (the initial slope carries the
@@ -22,15 +22,13 @@
 // and 2 W / Fp < eps_p makes the bar perfectly brittle as the triangle does (both counted clamped).
 #pragma once
 #include <algorithm>
-#include <cstdint>
+#include <array>
 #include <string>
 #include <tuple>
 #include <utility>
 #include <vector>
 
-#include "ldem/Lattice.hpp"
-#include "ldem/Material.hpp"
-#include "ldem/laws/BarLaw.hpp"
+#include "ldem/laws/SecantLaw.hpp"
 
 namespace ldem {
 
@@ -88,8 +86,6 @@ inline double bilinearForce(double eps, double kappa, double EA, double epsP, do
     return EA * eps * forceRatio(eps, kappa, epsP, sK, epsK, epsR);
 }
 
-inline double updateDamage(double kappa, double eps) { return std::max(kappa, eps); }
-
 // Energy dissipated at damage kappa: L (area under the envelope to kappa - 1/2 F(kappa) kappa),
 // the area under each branch a trapezoid:
 //   eps_p < kappa <= eps_k:  A = 1/2 Fp eps_p + 1/2 (Fp + F) (kappa - eps_p)
@@ -107,103 +103,31 @@ inline double bilinearDissipated(double kappa, double EA, double epsP, double sK
 
 }  // namespace bilinear
 
-class BilinearLaw {
-public:
+// The bilinear envelope as a shape of SecantLaw (laws/SecantLaw.hpp): eps_k and eps_r per
+// bar; its constants s_k and g: LDEM_BILINEAR_LAW_PARAMETERS (kink_stress, Gf_ratio).
+struct BilinearShape {
     static constexpr const char* name = "bilinear";
-
-    double epsP = 0;           // critical strain (same for all bars)
-    double sK = 1;             // kink force over peak force (same for all bars)
-    std::vector<double> epsK;  // kink strain of each bar
-    std::vector<double> epsR;  // strain of zero force of each bar
-    std::vector<double> kappa;  // largest strain, recorded once past eps_p
-    std::vector<std::uint8_t> softening;  // per bar row: its RowPath (laws/BarLaw.hpp)
-
-    BilinearLaw() = default;
-    // Undamaged bars of lat of material m, each bar's kink and end from its G_F
-    // (surface edges carry their share of both EA and A_f).
-    BilinearLaw(const Lattice& lat, const Material& m, const std::vector<double>& GF)
-        : epsP(m.epsP), sK(m.kinkStress), epsK(lat.numBars()), epsR(lat.numBars()), kappa(lat.numBars(), 0.0),
-          softening(lat.barRows.size(), 0) {
-        const auto owned = lat.ownedBars();
-        for (const BarRow& row : lat.barRows) {
-            const BarFamily& fam = lat.families[row.family];
-            for (int p = 0; p < row.count; ++p) {
-                const std::int64_t b = row.first + p;
-                const double share = row.shareAt(p);
-                const bilinear::KinkStrains k =
-                    bilinear::kinkStrains(fam.Af * share, GF[b], fam.EA * share, epsP, fam.L, m.GfRatio, sK);
-                epsK[b] = k.epsK, epsR[b] = k.epsR;
-                clamped_ += k.clamped && b >= owned.first && b < owned.second;
-            }
-        }
-    }
-
-    // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
-    // never left the elastic path has kappa = 0 throughout: the fast path needs no state).
-    struct Rows {
-        static constexpr bool kElasticOnly = false;  // (InternalForces.hpp: barLayer)
-        double* kappa;
-        const double* epsK;
-        const double* epsR;
-        double epsP, sK, xP;  // xP: the stretch x of eps_p (laws/BarLaw.hpp)
-        std::uint8_t* softeningRow;
-
-        Rows forRow(std::int32_t r, std::int64_t first) const {
-            Rows row = *this;
-            row.kappa += first, row.epsK += first, row.epsR += first, row.softeningRow += r;
-            return row;
-        }
-        std::uint8_t path() const { return *softeningRow; }
-        void setPath(std::uint8_t path) const { *softeningRow = path; }
-
-        double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                       double& gy, double& gz) const {
-            return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
-        }
-        template <class Stretch>
-        double operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
-            const double eps = s.strain();
-            const double k = bilinear::updateDamage(kappa[p], eps);
-            kappa[p] = k > epsP ? k : kappa[p];
-            const double r = bilinear::forceRatio(eps, k, epsP, sK, epsK[p], epsR[p]);
-            const double Fl = s.elasticForcePerLength(EA) * r;
-            gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return dashpotRatio(k, epsP, eps);
-        }
+    struct Params {
+        LDEM_BILINEAR_LAW_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
-    Rows rows() { return {kappa.data(), epsK.data(), epsR.data(), epsP, sK, stretchOfStrain(epsP), softening.data()}; }
+    static Params params(const Material& m) { return LDEM_PART_PARAMS(Params, LDEM_BILINEAR_LAW_PARAMETERS, m); }
+    static std::vector<std::pair<std::string, double>> constants(const Params& p) {
+        return {LDEM_BILINEAR_LAW_PARAMETERS(LDEM_NAMED_MEMBER)};
+    }
+    static constexpr std::array<const char*, 1> kBarParams{"eps_k"};
+    using Bar = std::array<double, 1>;
 
-    double force(std::int64_t b, double EA, double eps) const {
-        return bilinear::bilinearForce(eps, kappa[b], EA, epsP, sK, epsK[b], epsR[b]);
+    static Realised<1> realise(double Af, double GF, double EA, double epsP, double L, const Params& p) {
+        const bilinear::KinkStrains k = bilinear::kinkStrains(Af, GF, EA, epsP, L, p.GfRatio, p.kinkStress);
+        return {k.epsR, {k.epsK}, k.clamped};
     }
-    // At strain eps: the bar can only have gone past the kappa of the last force evaluation.
-    double stored(std::int64_t b, double EA, double L, double eps) const {
-        const double k = bilinear::updateDamage(kappa[b], eps);
-        return 0.5 * bilinear::bilinearForce(eps, k, EA, epsP, sK, epsK[b], epsR[b]) * eps * L;
+    static double secantRatio(double kappa, double epsP, double epsR, Bar b, const Params& p) {
+        return bilinear::secantRatio(kappa, epsP, p.kinkStress, b[0], epsR);
     }
-    double dissipated(std::int64_t b, double EA, double L, double eps) const {
-        return bilinear::bilinearDissipated(bilinear::updateDamage(kappa[b], eps), EA, epsP, sK, epsK[b], epsR[b], L);
+    static double dissipated(double kappa, double EA, double epsP, double epsR, Bar b, const Params& p,
+                             double L) {
+        return bilinear::bilinearDissipated(kappa, EA, epsP, p.kinkStress, b[0], epsR, L);
     }
-    // A_f G_F, or 1/2 L EA eps_p^2 for a bar clamped to perfectly brittle: what
-    // the bar dissipates once broken (not D(eps_r), which is 0 where eps_r = eps_p).
-    double ruptureEnergy(std::int64_t b, double EA, double L) const {
-        return L * bilinear::envelopeArea(EA * epsP, epsP, sK, epsK[b], epsR[b]);
-    }
-    DamageState damage(std::int64_t b, double eps = 0) const {
-        return ldem::damageState(bilinear::updateDamage(kappa[b], eps), epsP, epsR[b]);
-    }
-    bool intact(std::int64_t b) const { return kappa[b] < epsR[b]; }
-    std::int64_t clampedOwnedBars() const { return clamped_; }
-
-    std::vector<std::pair<std::string, const std::vector<double>*>> arrays() const {
-        return {{"kappa", &kappa}, {"eps_k", &epsK}, {"eps_r", &epsR}};
-    }
-    std::vector<std::pair<std::string, std::vector<double>*>> arrays() {
-        return {{"kappa", &kappa}, {"eps_k", &epsK}, {"eps_r", &epsR}};
-    }
-    std::vector<std::uint8_t>& softeningRows() { return softening; }
-    const std::vector<std::uint8_t>& softeningRows() const { return softening; }
-    std::vector<std::pair<std::string, double>> constants() const { return {{"eps_p", epsP}, {"kink_stress", sK}}; }
 
     template <class Def>
     static void singles(Def def) {
@@ -218,9 +142,8 @@ public:
             },
             "Af", "GF", "EA", "eps_p", "L", "Gf_ratio", "s_k");
     }
-
-private:
-    std::int64_t clamped_ = 0;
 };
+
+using BilinearLaw = SecantLaw<BilinearShape>;
 
 }  // namespace ldem

@@ -1,7 +1,7 @@
-// The constitutive law of one bar: Hillerborg's triangle (LDEM_SPEC section 3),
-// whole: its pure functions, the per-bar state, the row functor of the force
-// loop with its elastic fast path, the realisation of the limit strains from
-// the random G_f, and its energies (the interface: laws/BarLaw.hpp).
+// The constitutive law of one bar: Hillerborg's triangle (LDEM_SPEC section 3):
+// its pure functions and its shape; the per-bar state, the row functor of the
+// force loop and the realisation from the random G_f are SecantLaw's
+// (laws/SecantLaw.hpp; the interface: laws/BarLaw.hpp).
 //
 //        F
 //   EA eps_p |    /\            tension: elastic up to eps_p, linear softening
@@ -16,14 +16,10 @@
 // one definition.
 #pragma once
 #include <algorithm>
-#include <cstdint>
-#include <string>
+#include <array>
 #include <utility>
-#include <vector>
 
-#include "ldem/Lattice.hpp"
-#include "ldem/Material.hpp"
-#include "ldem/laws/BarLaw.hpp"
+#include "ldem/laws/SecantLaw.hpp"
 
 namespace ldem {
 
@@ -88,109 +84,22 @@ inline double dissipatedEnergy(double kappa, double EA, double epsP, double epsR
 
 }  // namespace hillerborg
 
-class HillerborgLaw {
-public:
+// The triangle as a shape of SecantLaw (laws/SecantLaw.hpp): eps_r alone per bar.
+struct HillerborgShape : NoParams {
     static constexpr const char* name = "hillerborg";
+    static constexpr std::array<const char*, 0> kBarParams{};
+    using Bar = std::array<double, 0>;
 
-    // Per-bar state. Kept in double precision: the damaged regime is chaotic,
-    // and rounding kappa or eps_r to float moved the peak of the 0.24 m cube by
-    // 3e-4 (measured), far above rounding.
-    double epsP = 0;            // critical strain (same for all bars)
-    std::vector<double> epsR;   // limit strain of each bar
-    // Damage: the largest strain reached, recorded once it passes eps_p (the
-    // law does not depend on it below eps_p, so elastic bars never write it).
-    std::vector<double> kappa;
-    // Per bar row: its RowPath (laws/BarLaw.hpp), elastic until some bar of the row passes eps_p.
-    std::vector<std::uint8_t> softening;
-
-    HillerborgLaw() = default;
-    // Undamaged bars of lat with the given limit strains.
-    HillerborgLaw(const Lattice& lat, double epsP_, std::vector<double> epsR_)
-        : epsP(epsP_), epsR(std::move(epsR_)), kappa(lat.numBars(), 0.0), softening(lat.barRows.size(), 0) {}
-    // Undamaged bars of lat of material m, the limit strain of each from its G_f
-    // (surface edges carry their share of both EA and A_f).
-    HillerborgLaw(const Lattice& lat, const Material& m, const std::vector<double>& Gf)
-        : HillerborgLaw(lat, m.epsP, std::vector<double>(lat.numBars())) {
-        const auto owned = lat.ownedBars();
-        for (const BarRow& row : lat.barRows) {
-            const BarFamily& fam = lat.families[row.family];
-            for (int p = 0; p < row.count; ++p) {
-                const std::int64_t b = row.first + p;
-                const double share = row.shareAt(p);
-                const hillerborg::LimitStrain ls = hillerborg::limitStrain(fam.Af * share, Gf[b], fam.EA * share, m.epsP, fam.L);
-                epsR[b] = ls.epsR;
-                clamped_ += ls.clamped && b >= owned.first && b < owned.second;
-            }
-        }
+    static Realised<0> realise(double Af, double Gf, double EA, double epsP, double L, const Params&) {
+        const hillerborg::LimitStrain ls = hillerborg::limitStrain(Af, Gf, EA, epsP, L);
+        return {ls.epsR, {}, ls.clamped};
     }
-
-    // The row functor (laws/BarLaw.hpp): elastic while eps <= eps_p (a row that
-    // never left the elastic path has kappa = 0 throughout: the fast path needs no state).
-    struct Rows {
-        static constexpr bool kElasticOnly = false;  // (InternalForces.hpp: barLayer)
-        double* kappa;
-        const double* epsR;
-        double epsP, xP;  // xP: the stretch x of eps_p (laws/BarLaw.hpp)
-        std::uint8_t* softeningRow;
-
-        Rows forRow(std::int32_t r, std::int64_t first) const {
-            Rows row = *this;
-            row.kappa += first, row.epsR += first, row.softeningRow += r;
-            return row;
-        }
-        std::uint8_t path() const { return *softeningRow; }
-        void setPath(std::uint8_t path) const { *softeningRow = path; }
-
-        double elastic(std::int64_t, const BarFamily& fam, double EA, double dux, double duy, double duz, double& gx,
-                       double& gy, double& gz) const {
-            return elasticBarForce(fam, EA, xP, dux, duy, duz, gx, gy, gz);
-        }
-        template <class Stretch>
-        double operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
-            const double eps = s.strain();
-            const double k = hillerborg::updateDamage(kappa[p], eps);
-            kappa[p] = k > epsP ? k : kappa[p];
-            const double r = hillerborg::forceRatio(eps, k, epsP, epsR[p]);
-            const double Fl = s.elasticForcePerLength(EA) * r;
-            gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
-            return dashpotRatio(k, epsP, eps);
-        }
-    };
-    Rows rows() { return {kappa.data(), epsR.data(), epsP, stretchOfStrain(epsP), softening.data()}; }
-
-    // Bar b alone, at strain eps, with the damage of the last force evaluation.
-    double force(std::int64_t b, double EA, double eps) const {
-        return hillerborg::axialForce(eps, kappa[b], EA, epsP, epsR[b]);
+    static double secantRatio(double kappa, double epsP, double epsR, Bar, const Params&) {
+        return hillerborg::secantRatio(kappa, epsP, epsR);
     }
-    // Energies and damage state of bar b at strain eps. kappa is the damage
-    // reached at the last force evaluation; the bar can only have gone further
-    // since, so take the larger.
-    double stored(std::int64_t b, double EA, double L, double eps) const {
-        return hillerborg::storedEnergy(eps, hillerborg::updateDamage(kappa[b], eps), EA, epsP, epsR[b], L);
+    static double dissipated(double kappa, double EA, double epsP, double epsR, Bar, const Params&, double L) {
+        return hillerborg::dissipatedEnergy(kappa, EA, epsP, epsR, L);
     }
-    double dissipated(std::int64_t b, double EA, double L, double eps) const {
-        return hillerborg::dissipatedEnergy(hillerborg::updateDamage(kappa[b], eps), EA, epsP, epsR[b], L);
-    }
-    // A_f G_f, or 1/2 L EA eps_p^2 for a bar clamped to perfectly brittle.
-    double ruptureEnergy(std::int64_t b, double EA, double L) const {
-        return hillerborg::triangleEnergy(EA, epsP, epsR[b], L);
-    }
-    DamageState damage(std::int64_t b, double eps = 0) const {
-        return ldem::damageState(hillerborg::updateDamage(kappa[b], eps), epsP, epsR[b]);
-    }
-    // A broken bar (kappa >= eps_r) carries no tension, ever again.
-    bool intact(std::int64_t b) const { return kappa[b] < epsR[b]; }
-    // Owned bars whose eps_r < eps_p was raised to eps_p (perfectly brittle).
-    std::int64_t clampedOwnedBars() const { return clamped_; }
-
-    // The state a checkpoint keeps (its keys in checkpoint.npz), and the constants.
-    std::vector<std::pair<std::string, const std::vector<double>*>> arrays() const {
-        return {{"kappa", &kappa}, {"eps_r", &epsR}};
-    }
-    std::vector<std::pair<std::string, std::vector<double>*>> arrays() { return {{"kappa", &kappa}, {"eps_r", &epsR}}; }
-    std::vector<std::uint8_t>& softeningRows() { return softening; }
-    const std::vector<std::uint8_t>& softeningRows() const { return softening; }
-    std::vector<std::pair<std::string, double>> constants() const { return {{"eps_p", epsP}}; }
 
     // Its one-bar functions for Python: def(name, doc, function, argument names...).
     template <class Def>
@@ -206,9 +115,8 @@ public:
             },
             "Af", "Gf", "EA", "eps_p", "L");
     }
-
-private:
-    std::int64_t clamped_ = 0;
 };
+
+using HillerborgLaw = SecantLaw<HillerborgShape>;
 
 }  // namespace ldem

@@ -14,7 +14,7 @@ from .files import atomic, prepare_dir, write_text  # noqa: F401
 from .registry import Run, check_writers, describe_writers, open_writers, register_writer, writer_names  # noqa: F401
 from .tables import (CurveCsv, cut_curve_after, read_curve, read_summary, read_table, write_summary,  # noqa: F401
                      write_table)
-from .vtk import (VTU_CELL_ARRAYS, VTU_POINT_ARRAYS, Snapshots, write_bars, write_pvd, write_pvtu,  # noqa: F401
+from .vtk import (VTU_POINT_ARRAYS, Snapshots, bar_arrays, vtu_cell_arrays, write_bars, write_pvd, write_pvtu,  # noqa: F401
                   write_vtu)
 from .checkpoints import (CHECKPOINT, FINAL_STATE, Checkpoints, case_checkpoint, saved_step,  # noqa: F401
                           discard_checkpoint, read_checkpoint, restore, write_checkpoint)

@@ -14,31 +14,36 @@ from .files import atomic
 from .registry import register_writer
 
 
+def bar_arrays(sim) -> dict:
+    """Per bar: damage_state (0 undamaged, 1 damaged, 2 broken), damage
+    (kappa/eps_r), the law's state through its interface (sim.law_state(): every
+    law's kappa and eps_r, and its own, e.g. the bilinear law's eps_k), strain,
+    force [N], G_f, kind."""
+    law = sim.law_state()
+    return {"damage_state": sim.damage_state.astype(np.int32),
+            "damage": np.minimum(law["kappa"] / law["eps_r"], 1.0),
+            **law,
+            "strain": sim.bar_strain,
+            "force": sim.bar_force,
+            "G_f": sim.fracture_energy_field,
+            "kind": sim.lattice.bar_table()["kind"].astype(np.int32)}
+
+
 def write_vtu(sim, path: str, broken_only: bool = False) -> None:
     """Every bar (or only the broken ones: the crack) as a VTK line cell, at its
     reference position with the node displacements as a point vector (ParaView:
-    Warp By Vector), and per bar: damage_state (0 undamaged, 1 damaged, 2
-    broken), damage (kappa/eps_r), kappa, eps_r, strain, force [N], G_f, kind."""
+    Warp By Vector), and per bar the arrays of bar_arrays."""
     import meshio
 
     lat = sim.lattice
     bars = lat.bar_table()
-    kappa, eps_r, state = sim.kappa, sim.eps_r, sim.damage_state
-    keep = state == 2 if broken_only else np.ones(len(kappa), dtype=bool)
+    per_bar = bar_arrays(sim)
+    state = per_bar["damage_state"]
+    keep = state == 2 if broken_only else np.ones(len(state), dtype=bool)
     mine = parallel.owned(sim)  # a slab's halo bars are written by their owners
     keep[:mine.start] = False
     keep[mine.stop:] = False
     cells = [("line", np.column_stack([bars["n1"], bars["n2"]])[keep].astype(np.int64))]
-    per_bar = {
-        "damage_state": state.astype(np.int32),
-        "damage": np.minimum(kappa / eps_r, 1.0),
-        "kappa": kappa,
-        "eps_r": eps_r,
-        "strain": sim.bar_strain,
-        "force": sim.bar_force,
-        "G_f": sim.fracture_energy_field,
-        "kind": bars["kind"].astype(np.int32),
-    }
     mesh = meshio.Mesh(np.column_stack([lat.x0, lat.y0, lat.z0]), cells,
                        point_data={"displacement": sim.displacement},
                        cell_data={k: [v[keep]] for k, v in per_bar.items()})
@@ -48,9 +53,11 @@ def write_vtu(sim, path: str, broken_only: bool = False) -> None:
 
 # The arrays of write_vtu's files: name -> (VTK type, components), for a .pvtu.
 VTU_POINT_ARRAYS = {"displacement": ("Float64", 3)}
-VTU_CELL_ARRAYS = {"damage_state": ("Int32", 1), "damage": ("Float64", 1), "kappa": ("Float64", 1),
-                   "eps_r": ("Float64", 1), "strain": ("Float64", 1), "force": ("Float64", 1), "G_f": ("Float64", 1),
-                   "kind": ("Int32", 1)}
+
+
+def vtu_cell_arrays(sim) -> dict:
+    """The cell arrays of sim's write_vtu files: name -> (VTK type, components)."""
+    return {k: ("Int32" if v.dtype == np.int32 else "Float64", 1) for k, v in bar_arrays(sim).items()}
 
 
 def write_pvtu(path: str, pieces: List[str], point_arrays: dict, cell_arrays: dict) -> None:
@@ -82,7 +89,7 @@ def write_bars(sim, path: str, broken_only: bool = False) -> str:
     whole = os.path.splitext(path)[0] + ".pvtu"
     if parallel.is_root():
         write_pvtu(whole, [parallel.piece_name(path, r) for r in range(parallel.ranks())],
-                            VTU_POINT_ARRAYS, VTU_CELL_ARRAYS)
+                   VTU_POINT_ARRAYS, vtu_cell_arrays(sim))
     return os.path.basename(whole)
 
 

@@ -17,7 +17,7 @@ from typing import Callable, List, Sequence
 
 import numpy as np
 
-from .. import io
+from .. import _core, io
 from ..cube import CubeTest
 from .options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
 from .cases import Named, case_name
@@ -53,7 +53,7 @@ def damage_at_peak(test: CubeTest, variant: str, result) -> dict:
     i = int(np.argmin(np.abs(c["mean_strain"] - s["strain_at_peak"])))
     bars = sim.lattice.bar_table()
     z0 = np.asarray(sim.lattice.z0)
-    hurt = np.asarray(sim.kappa) > sim.eps_p
+    hurt = np.asarray(sim.damage_state) != _core.UNDAMAGED  # kappa > eps_p, whatever the law
     zmid = 0.5 * (z0[bars["n1"]] + z0[bars["n2"]]) / test.size
     return {"load": test.load, "variant": variant, "seed": test.seed, "peak_MPa": s["peak_stress_MPa"],
             "strain_at_peak": s["strain_at_peak"], "damaged_at_peak": int(c["damaged_bars"][i]),
