@@ -90,7 +90,7 @@ void forEveryLaw(F check) {
     const Lattice lat = buildCubicLattice(2, 2, 2, 0.02, m);
     const std::vector<double> gf = spreadField(lat.numBars());
     for (std::size_t which = 0; which < std::variant_size_v<BarLaws>; ++which) {
-        BarLaws law = makeBarLaw(which, lat, m, gf);
+        BarLaws law = makeBarLaw(BarLawId(which), lat, m, gf);
         std::visit([&](auto& l) {
             SCOPED_TRACE(std::string("law ") + l.name);
             ASSERT_GT(l.clampedOwnedBars(), 0);  // the brittle bars are there
