@@ -67,7 +67,7 @@ template <class Law>
 std::vector<double> damagesToTry(const Law& law, std::int64_t b, double epsP) {
     std::vector<double> marks{epsP};
     for (const auto& [name, values] : law.arrays())
-        if (name != "kappa") marks.push_back((*values)[b]);
+        if (name != "kappa" && (*values)[b] > 0) marks.push_back((*values)[b]);  // a strain of the law (eps_s may be 0)
     std::vector<double> k;
     for (double m : marks)
         for (double f : {1 - 1e-9, 1.0, 1 + 1e-9}) k.push_back(m * f);
