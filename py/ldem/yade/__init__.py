@@ -6,6 +6,7 @@ Use inside YADE (``yade-double -n -x script.py``)::
     import ldem.yade
     from ldem import _core
     lp = _core.LoadingParams(); lp.tail_drive = "fixed"; rp = _core.RunParams(); rp.zeta = 0
+    rp.zeta_high, rp.dt_safety = 0.0, 0.4            # YADE has no bar dashpots: 0.4 of the limit without them
     sim = _core.Simulation(6, 6, 6, 0.02, _core.Material(), lp, rp)
     spec = ldem.yade.SimulationSpecimen(sim)         # fills YADE's O
     result = spec.run()                          # to separation, as sim.run() would

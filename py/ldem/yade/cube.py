@@ -44,6 +44,10 @@ class SimulationSpecimen:
         if sim.measures["control"] >= 0:
             raise ValueError("the YADE bridge drives by displacement only: opening control (measure.control) is "
                              "ldem's own")
+        if sim.dt * sim.omega_max / 2 > 0.4 * (1 + 1e-12):  # ldem's default step leans on its bar dashpots
+            raise ValueError(f"the YADE bridge has no bar dashpots (ldem's zeta_high), so its step must stay at 0.4 of "
+                             f"the limit: build the ldem specimen with zeta_high=0 and dt_safety=0.4 (its step is "
+                             f"{sim.dt * sim.omega_max / 2:.3g} of 2/omega_max)")
         y = _yade()
         O = self.O = y["O"]
         if reset:
