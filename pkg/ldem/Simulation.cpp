@@ -56,12 +56,11 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     const double pi = 3.14159265358979323846;
     splitWindow_ = run_.splitWindow > 0 ? run_.splitWindow : 2 * (2 * pi / freq_.omega1);
     DynamicsSetup setup{freq_.omega1, dt_, meas_.gaugeLength, splitWindow_, 1, openingControl()};
-    if (run_.recordEvery > 0) {
-        recordEvery_ = run_.recordEvery;
-    } else {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
+    {  // a record per eps_p/50 of mean strain at the initial rate: about 100 before the peak
         const double v0 = fixedDrive(load_, setup).program().v0;
         const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (v0 * std::abs(meas_.meanDriveWeight));
-        recordEvery_ = std::max(1, int(rowTime / dt_));
+        defaultRecordEvery_ = std::max(1, int(rowTime / dt_));
+        recordEvery_ = run_.recordEvery > 0 ? run_.recordEvery : defaultRecordEvery_;
     }
     setup.recordEvery = recordEvery_;
     drive_ = makeDrive(load_, mat_, setup, dampings_);
@@ -374,7 +373,8 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     if (!g.started) {
         refuseDriveJump(load_.strainRate, dt_, mat_.epsP);
         refuseDriveCrawl(load_.strainRate, dt_, mat_.epsP);
-        const double firstRecord = meanStrainOf(drive().displacement(recordEvery_ * dt_));
+        // (at the default interval: a run recorded seldom on purpose still runs)
+        const double firstRecord = meanStrainOf(drive().displacement(defaultRecordEvery_ * dt_));
         for (const StopRules& r : stops_)
             if (const auto* f = std::get_if<FinalStrainStop>(&r)) f->refuseBeforeFirstRecord(firstRecord);
         g = RunProgress();

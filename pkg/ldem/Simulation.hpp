@@ -202,7 +202,7 @@ private:
     double cellSupport_ = 0, cellLoaded_ = 0;
     int cellStates_ = 0;
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
-    int recordEvery_ = 1;
+    int recordEvery_ = 1, defaultRecordEvery_ = 1;  // its record interval, and the default's [steps]
     int threads_ = 1;
     RunProgress progress_;
 };

@@ -38,9 +38,11 @@ COMMANDS = sorted({c for p in PAGES for c in shell_commands(p)})
 
 
 def anchors(page):
-    """GitHub's anchors of a page's headings."""
-    heads = re.findall(r"^#+ (.*)$", open(os.path.join(ROOT, page)).read(), re.M)
-    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-") for h in heads}
+    """GitHub's anchors of a page's headings, and its own <a id> anchors."""
+    text = open(os.path.join(ROOT, page)).read()
+    heads = re.findall(r"^#+ (.*)$", text, re.M)
+    return {re.sub(r"[^\w\- ]", "", h.strip().lower()).replace(" ", "-") for h in heads} | \
+        set(re.findall(r'<a id="([^"]+)"></a>', text))
 
 
 def test_readme_is_a_front_door():

@@ -21,8 +21,8 @@ public:
     const char* reason(const CurvePoint& p, const RunSummary&) const {
         return p.meanStrain < p_.finalStrain ? nullptr : "final_strain";
     }
-    // A run that would stop before its first record (at mean strain firstRecord)
-    // has no curve, and its energies are of the smooth start's first steps
+    // A run that would stop before the first record of the default interval (at
+    // mean strain firstRecord) has next to no curve, and its energies are of the smooth start's first steps
     // (--final-strain 1e-9 stopped after 29 steps with a balance error of 9e-2,
     // blamed on the integration). Refused before the first step.
     void refuseBeforeFirstRecord(double firstRecord) const {
