@@ -135,6 +135,12 @@
       "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "\
       "the mean strain since load loss, with the load still below stop_fraction x peak")
 
+// The load-loss stop (dynamics/LoadLossStop.hpp).
+#define LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                    \
+    X(double, lossStopStrainRatio, "loss_stop_strain_ratio", 10.0, "", Domain::atLeast(0),                   \
+      "stop_at load_loss: the run goes on at least to this multiple of the mean strain at the peak, so that " \
+      "the softening branch and the crack are in the record")
+
 // The final-strain stop (dynamics/FinalStrainStop.hpp).
 #define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
     X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(),                                      \
@@ -156,6 +162,7 @@
     X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}),\
       "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "    \
       "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss")\
+    LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                        \
     LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                        \
     LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                     \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \

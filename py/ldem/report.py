@@ -234,9 +234,10 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
            "load was lost, and the cheapest cut (the least energy of any set of bars whose rupture separates the "
            "faces: a lower bound of U_num). U_min = E[G_f] x face area; corrected c_a = 0.1385 x E[U_num/U_min] "
            "(the study's proposal for coarser meshes). A specimen that hinges (triangular) does not separate: "
-           "its run stops once U has converged (it grew by less than converged_growth over the last doubling of "
-           "the strain past the load loss), and U there is U_final, never U_num (mean over the converged "
-           "specimens, counted in 'converged').", ""]
+           "its run stops at the load loss (stop_at load_loss, never before loss_stop_strain_ratio x its strain at "
+           "the peak), or, with --triangular-stop converged, once U has converged (it grew by less than "
+           "converged_growth over the last doubling of the strain past the load loss), and U there is U_final, "
+           "never U_num (mean over the converged specimens, counted in 'converged').", ""]
     rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}",
              num_cell(r["separation_strain_mean"], ".3g"), num_cell(r["U_num_J_mean"], ".4g"),
              f"{r['U_min_J']:.4g}", num_cell(r["U_ratio_mean"], ".3f"), num_cell(r["U_ratio_cv"], ".3f"),

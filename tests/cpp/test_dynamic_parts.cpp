@@ -145,10 +145,29 @@ TEST(DynamicParts, TheConvergedStopRoundTripsItsRungs) {
     recordRoundTrip(ConvergedStop(p), ConvergedStop(p), 7, stopFeed<ConvergedStop>([] { return true; }));
 }
 
+// The load-loss stop waits for the load loss and for loss_stop_strain_ratio x
+// the strain at the peak, whichever comes last.
+TEST(DynamicParts, TheLoadLossStopNeverEndsARunBeforeItsMultipleOfThePeakStrain) {
+    LoadLossStop::Params p;
+    p.lossStopStrainRatio = 10;
+    const LoadLossStop stop(p);
+    RunSummary s;
+    s.strainAtPeak = 1e-4;
+    CurvePoint at;
+    at.meanStrain = 2e-3;
+    EXPECT_EQ(stop.reason(at, s), nullptr);  // past the floor, load not lost
+    s.loadLoss.step = 100;
+    EXPECT_STREQ(stop.reason(at, s), "load_lost");
+    at.meanStrain = 0.99e-3;  // lost, but below 10 x 1e-4
+    EXPECT_EQ(stop.reason(at, s), nullptr);
+    at.meanStrain = 1e-3;
+    EXPECT_STREQ(stop.reason(at, s), "load_lost");
+}
+
 TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
     FinalStrainStop::Params f;
     EXPECT_TRUE(FinalStrainStop(f).state().empty());
-    EXPECT_TRUE(LoadLossStop().state().empty());
+    EXPECT_TRUE(LoadLossStop(LoadLossStop::Params{}).state().empty());
     MassDamping::Params m;
     m.zeta = 0.02;
     Dampings d{MassDamping(m, 800.0), BarDashpots()};

@@ -157,6 +157,7 @@ TEST(Dynamics, WholeRunToLoadLossBalancesEnergy) {
     rp.seed = 3;
     rp.threads = 1;
     rp.stopAt = StopAt::LoadLoss;
+    rp.lossStopStrainRatio = 0;  // at the load loss itself (its floor: test_dynamic_parts)
     Simulation sim(cubeTestSpecimen(4, 4, 4, kL0, m, lp), m, lp, rp);
     CurvePoint last, atPeak;
     std::vector<CurvePoint> all;

@@ -46,6 +46,10 @@ def test_a_triangular_cube_stops_once_its_energy_has_converged(run):
     assert len(growth) == 2 or growth[-3] >= GROWTH  # and not earlier: the rung before them was loud
 
 
-def test_the_size_effect_study_stops_triangular_cubes_when_converged():
+def test_the_size_effect_study_stops_triangular_cubes_at_load_loss_or_when_converged():
     tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"])
+    assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "load_loss")]
+    tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"], triangular_stop="converged")
     assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "converged")]
+    with pytest.raises(ValueError, match="triangular_stop"):
+        study.size_effect_tests([0.12], 1, ["triangular"], triangular_stop="separation")

@@ -1,8 +1,15 @@
 // Stop at the load loss (stop_at load_loss): the event is the load-loss
-// detector's (LoadLoss.hpp), this rule only ends the run there.
+// detector's (LoadLoss.hpp), this rule only ends the run there, and never
+// before loss_stop_strain_ratio x the mean strain at the peak. The floor is for
+// a specimen whose load falls fast after its peak (a small uniform cube): its
+// crack picture and the softening branch of its curve need the strain to move
+// on past the peak before the run ends (the size-effect study's triangular half
+// stops here: issue 41).
+// Parameters: LDEM_LOAD_LOSS_STOP_PARAMETERS (loss_stop_strain_ratio).
 #pragma once
 #include <vector>
 
+#include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
 namespace ldem {
@@ -10,12 +17,20 @@ namespace ldem {
 class LoadLossStop {
 public:
     static constexpr const char* name = "load_loss";
+    struct Params {
+        LDEM_LOAD_LOSS_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
+    };
+    explicit LoadLossStop(const Params& p) : p_(p) {}
     void record(StopRecord&) {}
-    const char* reason(const CurvePoint&, const RunSummary& s) const {
-        return s.loadLoss.reached() ? "load_lost" : nullptr;
+    const char* reason(const CurvePoint& p, const RunSummary& s) const {
+        const bool pastFloor = p.meanStrain >= p_.lossStopStrainRatio * s.strainAtPeak;
+        return s.loadLoss.reached() && pastFloor ? "load_lost" : nullptr;
     }
     std::vector<double> state() const { return {}; }
     void setState(const std::vector<double>&) {}
+
+private:
+    Params p_;
 };
 
 }  // namespace ldem

@@ -56,7 +56,8 @@ Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSet
 
 std::vector<StopRules> makeStops(const RunParams& run) {
     std::vector<StopRules> stops{SeparationStop()};
-    if (run.stopAt == StopAt::LoadLoss) stops.emplace_back(LoadLossStop());
+    if (run.stopAt == StopAt::LoadLoss)
+        stops.emplace_back(LoadLossStop(LDEM_PART_PARAMS(LoadLossStop::Params, LDEM_LOAD_LOSS_STOP_PARAMETERS, run)));
     if (run.stopAt == StopAt::Converged)
         stops.emplace_back(ConvergedStop(LDEM_PART_PARAMS(ConvergedStop::Params, LDEM_CONVERGED_STOP_PARAMETERS, run)));
     stops.emplace_back(FinalStrainStop(LDEM_PART_PARAMS(FinalStrainStop::Params, LDEM_FINAL_STRAIN_STOP_PARAMETERS, run)));

@@ -10,7 +10,8 @@ from typing import Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
-from .cases import load_case, load_curves, read_discussion, size_effect_tests
+from .cases import (TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, load_case, load_curves, read_discussion,
+                    size_effect_tests)
 from .executors import run_cases
 from .options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
                       parse_loads, seed_count, values_option)
@@ -51,12 +52,20 @@ def add_arguments(s) -> None:
     add_common(s)
     values_option(s, "size", "--sizes", STUDY_SIZES)
     add_seeds(s, "size and load")
+    s.add_argument("--triangular-stop", choices=TRIANGULAR_STOPS, default="load_loss",
+                   help="what ends a triangular case: load_loss (default; its peak, curve and crack are all there, "
+                        "and never before 10 x its strain at the peak) or converged (U_final, once the fracture "
+                        f"energy stops growing: {TRIANGULAR_CONVERGED_COST})")
 
 
 def cmd_size_effect(args) -> int:
     sizes = parse_floats(args.sizes, "--sizes")
-    tests = size_effect_tests(sizes, seed_count(args), parse_loads(args.loads), **common_settings(args))
+    loads = parse_loads(args.loads)
+    tests = size_effect_tests(sizes, seed_count(args), loads, triangular_stop=args.triangular_stop,
+                              **common_settings(args))
     check_tests(tests)
+    if args.triangular_stop == "converged" and "triangular" in loads:
+        print(f"study: the triangular cases run until U converges: {TRIANGULAR_CONVERGED_COST}")
     t0 = time.perf_counter()
     table, fits = run_size_effect(tests, args.out, jobs=args.jobs, scheduler=args.scheduler,
                                   progress=False if args.no_progress else None, report=not args.no_report,
