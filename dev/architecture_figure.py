@@ -1,4 +1,4 @@
-"""doc/architecture.png: the layers of the ldem package, read from the one
+"""docs/architecture.png: the layers of the ldem package, read from the one
 place they are declared and checked, tests/py/test_architecture.py (LAYERS).
 
     /usr/bin/python3 dev/architecture_figure.py
@@ -44,7 +44,7 @@ def main():
     ax.set_xlim(0, 1), ax.set_ylim(-0.05, len(ls) + 0.05)
     ax.axis("off")
     fig.tight_layout()
-    out = os.path.join(ROOT, "doc", "architecture.png")
+    out = os.path.join(ROOT, "docs", "architecture.png")
     fig.savefig(out, dpi=120)
     print(f"wrote {out}")
 

@@ -1,8 +1,8 @@
 """The example gallery of docs/specimens.md: runs every examples/*.toml (unless its run
 folder holds its finished run already: a study's case, ldem.study.Named) and puts its curve and its crack picture side by side
-in doc/gallery/NAME.png, at their own scale: one font size across the panels.
+in docs/gallery/NAME.png, at their own scale: one font size across the panels.
 
-    /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out doc/gallery] [--threads 1] [--only NAME ...]
+    /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out docs/gallery] [--threads 1] [--only NAME ...]
 """
 import argparse
 import glob
@@ -43,7 +43,7 @@ def side_by_side(pictures, title: str, path: str) -> None:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", default=os.path.join("out", "gallery"), help="run folders, one per example")
-    ap.add_argument("--out", default=os.path.join(ROOT, "doc", "gallery"), help="where the pictures go")
+    ap.add_argument("--out", default=os.path.join(ROOT, "docs", "gallery"), help="where the pictures go")
     ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run")
     ap.add_argument("--only", nargs="+", metavar="NAME", help="these examples only (e.g. beam_3pb)")
     args = ap.parse_args()

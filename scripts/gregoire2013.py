@@ -55,7 +55,7 @@ def predict(args) -> None:
     beams.write_predictions(args.out, args.seeds)
 
 
-CALIBRATED_NOTE = ("The nine beams with the concrete of the calibration procedure (doc/calibration.md: "
+CALIBRATED_NOTE = ("The nine beams with the concrete of the calibration procedure (docs/calibration.md: "
                    "bilinear law, G_f = 0.4 G_F, E and f_t from the virtual prism), **after the diagnosis, not "
                    "blind**: the procedure was written after the blind prediction was compared with these "
                    "measurements. Written by `scripts/gregoire2013.py calibrated`.")

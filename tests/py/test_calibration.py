@@ -1,4 +1,4 @@
-"""The calibration from a laboratory's properties (doc/calibration.md,
+"""The calibration from a laboratory's properties (docs/calibration.md,
 ldem.study.concrete) and the diagnosis's factors (ldem.study.beam_diagnosis):
 the virtual prism's gauges read a known material, the procedure meets its
 targets on a coarse prism and its output for Grégoire et al.'s concrete is

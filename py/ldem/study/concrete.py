@@ -240,5 +240,5 @@ def cmd_calibration(args) -> int:
 register(Study("calibration", "the lattice material of a concrete from what a laboratory reports (E, nu, f_t, "
                               "f_c or G_F), by the virtual prism", add_arguments, cmd_calibration,
                "Runs the virtual direct tension prism (seeds 1..N, to its load loss) until its E and f_t are "
-               "within 1 % of the targets (doc/calibration.md); use the parameters under [material] of a "
+               "within 1 % of the targets (docs/calibration.md); use the parameters under [material] of a "
                "specimen file with the same L0."))

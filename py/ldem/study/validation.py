@@ -1,5 +1,5 @@
 """Blind predictions of laboratory tests (issue 28, item 5): a specimen file,
-the concrete a laboratory reported, the calibration of doc/calibration.md at
+the concrete a laboratory reported, the calibration of docs/calibration.md at
 the file's module (ldem.study.concrete.calibrate, unchanged), six random
 specimens each stopped past their peak; the peak load (mean, CV), the curves
 and the crack pictures, written before any measurement is seen.
@@ -107,7 +107,7 @@ def write_prediction(out: str, name: str, seeds: int) -> dict:
     mean = statistics.mean(peaks)
     row = {"specimen": name, "peak_load_kN": mean, "cv": statistics.stdev(peaks) / mean if len(peaks) > 1 else 0.0,
            "seeds": len(peaks), "min_kN": min(peaks), "max_kN": max(peaks), "x_at_peak": statistics.mean(at),
-           "x_label": b.x_label, "calibration": "doc/calibration.md"}
+           "x_label": b.x_label, "calibration": "docs/calibration.md"}
     io.write_table(os.path.join(out, "predictions.csv"), [row], COLUMNS)
     n = max(len(v) for v in curves.values())
     io.write_table(os.path.join(out, "curves.csv"),
