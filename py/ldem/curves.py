@@ -6,12 +6,14 @@ from typing import Sequence
 import numpy as np
 
 
-def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400, log_from=None):
+def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n: int = 400, log_from=None,
+               upto=None):
     """Mean of a curve column over specimens on a common mean-strain grid of n
-    points (linear from 0, or geometric from log_from). A specimen that stopped
+    points (linear from 0, or geometric from log_from) up to the largest strain
+    reached (or upto: a zoom's grid, fine enough for the peak). A specimen that stopped
     early carries on at after_end (0 for the stress of a separated specimen), or
     at its last value (the final fracture energy)."""
-    top = max(c["mean_strain"][-1] for c in curves)
+    top = max(c["mean_strain"][-1] for c in curves) if upto is None else upto
     grid = np.linspace(0.0, top, n) if log_from is None else np.geomspace(log_from, top, n)
     ys = [np.interp(grid, c["mean_strain"], c[column] * scale,
                     right=(c[column] * scale)[-1] if after_end is None else after_end) for c in curves]

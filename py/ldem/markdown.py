@@ -18,6 +18,11 @@ def num_cell(v, fmt) -> str:
     return "-" if v in ("", None) else format(float(v), fmt)
 
 
+def mean_cv_cell(mean, cv, fmt: str = ".3f") -> str:
+    """'mean (CV)', the CV '-' where it does not exist (one specimen: ldem.study.tables.mean_cv)."""
+    return f"{format(float(mean), fmt)} ({num_cell(cv, '.3f')})"
+
+
 def md_table(header: Sequence[str], rows: Sequence[Sequence]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(x) for x in r) + " |" for r in rows]

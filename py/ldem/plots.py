@@ -38,8 +38,8 @@ STATE_ALPHA = {UNDAMAGED: 0.55, DAMAGED: 1.0, BROKEN: 1.0}  # undamaged bars fai
 STATE_NAMES = {UNDAMAGED: "undamaged", DAMAGED: "damaged", BROKEN: "broken"}
 
 
-ZOOM = 3.0  # the zoom panels reach ZOOM x the strain where the softening ends: the pre-peak and the softening
-SOFTENED = 0.1  # without a load loss in reach, the softening ends where the stress first falls below this x the peak
+ZOOM = 4.0  # a zoom reaches ZOOM x the abscissa of the peak: the rise, the peak and the start of the softening
+FAR = 2.0  # it is drawn when the run goes on past FAR x that reach: the peak then fills under 1/8 of the whole axis
 
 
 def axis_labels(test) -> tuple:
@@ -49,61 +49,96 @@ def axis_labels(test) -> tuple:
     return words["strain"], words["stress"]
 
 
-def softening_end(curve, summary):
-    """(strain, name) where the softening ends, if ZOOM x that strain is inside
-    the run (its whole axis then hides the peak at x = 0); else None. That
-    strain is the load loss's; or, where the load loss comes late or never (a
-    triangular cube hinges and keeps some load long after its peak), the first
-    strain past the peak with the stress below SOFTENED x the peak."""
-    x, y = curve["mean_strain"], curve["stress_MPa"]
-    ends = [((summary.get("load_loss") or {}).get("mean_strain"), "load loss")]
-    if len(y):
-        top = int(y.argmax())
-        below = (y[top:] < SOFTENED * y[top]).nonzero()[0]
-        if below.size:
-            ends.append((x[top + below[0]], f"{SOFTENED:.0%} of the peak"))
-    return next(((e, name) for e, name in ends if e and ZOOM * e < x[-1]), None)
+def zoom_reach(x_end: float, at_peak: float):
+    """The zoom's right end, ZOOM x the abscissa of the peak, where the run goes
+    on past FAR x it (its whole axis squeezes the peak to a sliver); else None."""
+    reach = ZOOM * at_peak
+    return reach if reach > 0 and x_end > FAR * reach else None
 
 
-def zoom_to(ax, x, ys, end) -> None:
-    """Limits ax to 0 <= x <= ZOOM x the softening's end (strain, name), its y
-    range that of the curves ys there (5 % margins)."""
-    x_max = ZOOM * end[0]
-    inside = x <= x_max
-    lo, hi = min(y[inside].min() for y in ys), max(y[inside].max() for y in ys)
+def zoom_to(ax, lines, reach: float) -> None:
+    """Limits ax to 0 <= x <= reach, its y range that of the curves lines ((x, y)
+    pairs) there (5 % margins)."""
+    inside = [y[x <= reach] for x, y in lines]
+    lo, hi = min(y.min() for y in inside if y.size), max(y.max() for y in inside if y.size)
     pad = 0.05 * (hi - lo or 1.0)
-    ax.set(xlim=(0.0, x_max), ylim=(lo - pad, hi + pad),
-           title=f"pre-peak and softening (to {ZOOM:g} x the strain at {end[1]})")
-    ax.axvline(end[0], color="0.4", lw=0.8, ls=":", label=end[1])
-    ax.legend(handles=ax.get_lines()[-1:], loc="upper right")
+    ax.set(xlim=(0.0, reach), ylim=(lo - pad, hi + pad))
+
+
+ZOOM_TITLE = f"near the peak (to {ZOOM:g} x its abscissa)"
+
+
+def _parameters(summary: dict) -> dict:
+    """The run's parameters: a cube's summary holds them flat, a specimen's under 'parameters'."""
+    p = summary.get("parameters") or {}
+    return p.get("parameters", p)
+
+
+def event_lines(ax, summary: dict) -> None:
+    """Vertical lines at the run's events, each labelled with what it marks:
+    the load loss (the stop rule's: the stress averaged over the split window
+    fell below stop_fraction x the peak), the separation and the converged U."""
+    fraction = _parameters(summary).get("stop_fraction")
+    words = {"load_loss": "load lost: averaged stress < " + (f"{fraction:g} x" if fraction else "a fraction of")
+                          + " the peak",
+             "separation": "separated: no intact bars join the loaded faces",
+             "converged": "U converged (U_final)"}
+    for (event, label), style in zip(words.items(), (":", "--", "-.")):
+        at = (summary.get(event) or {}).get("mean_strain")
+        if at is not None:
+            ax.axvline(at, color="0.35", lw=0.9, ls=style, label=label)
+
+
+def _peak_panel(ax, c, s, strain_label, stress_label) -> None:
+    """The curves of both loaded groups, the peak and the events on ax."""
+    ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
+    ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
+    if "peak_stress_MPa" in s:
+        ax.plot(s["strain_at_peak"], s["peak_stress_MPa"], "ko", ms=5,
+                label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
+    event_lines(ax, s)
+    ax.set(xlabel=strain_label, ylabel=stress_label)
+
+
+def _probe_panel(ax, c, stress_label) -> None:
+    """Stress against each probe (NAME_m, in mm); an inset near the peak where
+    the probes run far past their value at the peak."""
+    probes = [k for k in c if k.endswith("_m")]
+    top = int(np.argmax(c["stress_MPa"])) if len(c["stress_MPa"]) else 0
+    lines = [(c[name] * 1e3, c["stress_MPa"]) for name in probes]
+    for (x, y), name in zip(lines, probes):
+        ax.plot(x, y, lw=1, label=name[:-2].upper())
+    ax.set(xlabel=" / ".join(name[:-2].upper() for name in probes) + " [mm]", ylabel=stress_label)
+    ax.legend(loc="upper right")
+    reach = zoom_reach(min(x.max() for x, _ in lines), max(x[top] for x, _ in lines)) if len(c["stress_MPa"]) else None
+    if reach is not None:
+        inset = ax.inset_axes((0.45, 0.3, 0.52, 0.42))
+        for x, y in lines:
+            inset.plot(x, y, lw=1)
+        zoom_to(inset, lines, reach)
+        inset.set_title(ZOOM_TITLE, fontsize=7)
+        inset.tick_params(labelsize=6)
 
 
 def curve_plot(curve, summary: dict, title: str, labels=(STRAIN_LABEL, STRESS_LABEL)):
     """The curve figure: stress against strain over the whole run; beside it, for a run
-    past its load loss, the same to ZOOM x the strain at load loss; then stress against
+    far past its peak, the same to ZOOM x the strain at the peak; then stress against
     each probe (NAME_m: a beam's load against its CMOD, the curve laboratories report)."""
     c, s, (strain_label, stress_label) = curve, summary, labels
-    probes = [k for k in c if k.endswith("_m")]
-    end = softening_end(c, s)
-    n = 1 + (end is not None) + bool(probes)
+    x = c["mean_strain"]
+    reach = zoom_reach(x[-1], s.get("strain_at_peak", 0.0)) if len(x) else None
+    probes = any(k.endswith("_m") for k in c)
+    n = 1 + (reach is not None) + probes
     fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.4), squeeze=False, layout="constrained")
-    for ax in axes[0, :1 + (end is not None)]:
-        ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
-        ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
-        if "peak_stress_MPa" in s:
-            ax.plot(s["strain_at_peak"], s["peak_stress_MPa"], "ko", ms=5,
-                    label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
-        ax.set(xlabel=strain_label, ylabel=stress_label)
-    axes[0, 0].legend()
-    if end is not None:
+    for ax in axes[0, :1 + (reach is not None)]:
+        _peak_panel(ax, c, s, strain_label, stress_label)
+    axes[0, 0].legend(fontsize=8)
+    if reach is not None:
         axes[0, 0].set_title("whole run")
-        zoom_to(axes[0, 1], c["mean_strain"], (c["stress_MPa"], c["stress_top_MPa"]), end)
+        zoom_to(axes[0, 1], [(x, c["stress_MPa"]), (x, c["stress_top_MPa"])], reach)
+        axes[0, 1].set_title(ZOOM_TITLE)
     if probes:
-        ax = axes[0, -1]
-        for name in probes:
-            ax.plot(c[name] * 1e3, c["stress_MPa"], lw=1, label=name[:-2].upper())
-        ax.set(xlabel=" / ".join(name[:-2].upper() for name in probes) + " [mm]", ylabel=stress_label)
-        ax.legend()
+        _probe_panel(axes[0, -1], c, stress_label)
     fig.suptitle(title + energy_flag(s))
     return fig
 
@@ -128,22 +163,22 @@ ENERGIES = (("elastic_J", "elastic"), ("fracture_J", "fracture"), ("damping_J", 
 def energy_plot(curve, summary: dict, strain_label: str = STRAIN_LABEL):
     """The energy budget stacked under the external work over the whole run; beside
     it each energy on its own on a log scale (the elastic and kinetic energies are
-    a sliver of the stack), to ZOOM x the strain where the softening ends for a run past it."""
+    a sliver of the stack), to ZOOM x the strain at the peak for a run far past it (zoom_reach)."""
     c, x = curve, curve["mean_strain"]
     fig, (whole, each) = plt.subplots(1, 2, figsize=(10.4, 4.4), layout="constrained")
     whole.plot(x, c["external_work_J"], "k", lw=2, label="external work")
     whole.stackplot(x, *(c[k] for k, _ in ENERGIES), labels=[name for _, name in ENERGIES], alpha=0.6)
     whole.set(xlabel=strain_label, ylabel="energy [J]", title="budget, whole run")
     whole.legend(loc="upper left")
-    end = softening_end(c, summary)
-    x_max = x[-1] if end is None else ZOOM * end[0]
+    reach = zoom_reach(x[-1], summary.get("strain_at_peak", 0.0))
+    x_max = x[-1] if reach is None else reach
     inside = x <= x_max
     each.plot(x[inside], c["external_work_J"][inside], "k", lw=2, label="external work")
     for i, (k, name) in enumerate(ENERGIES):
         each.plot(x[inside], c[k][inside], color=f"C{i}", label=name)
     top = max(c["external_work_J"][inside].max(), 1e-30)
     each.set(yscale="log", ylim=(1e-5 * top, 2 * top), xlim=(0.0, x_max), xlabel=strain_label, ylabel="energy [J]",
-             title="each energy" + (f", to {ZOOM:g} x the strain at {end[1]}" if end else ""))
+             title="each energy" + ("" if reach is None else ", " + ZOOM_TITLE))
     each.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=5)  # below: clear of the curves
     fig.suptitle(f"energy budget (balance error {summary.get('energy_balance_error', float('nan')):.2e})"
                  + energy_flag(summary))

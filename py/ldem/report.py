@@ -40,30 +40,62 @@ def _strain_axis(ax, ylabel):
     ax.set(xlabel=plots.STRAIN_LABEL, ylabel=ylabel)
 
 
+def _reach(curves):
+    """plots.zoom_reach of specimens' curves: ZOOM x the largest strain at a peak, where they go on far past it."""
+    at_peak = max(float(c["mean_strain"][np.argmax(c["stress_MPa"])]) for c in curves)
+    return plots.zoom_reach(max(c["mean_strain"][-1] for c in curves), at_peak)
+
+
+def _zoom(ax, reach, title) -> None:
+    """ax's lines shown to the reach (plots.zoom_to), titled as the zoom of title."""
+    plots.zoom_to(ax, [(line.get_xdata(), line.get_ydata()) for line in ax.get_lines()], reach)
+    ax.set_title(f"{title}: {plots.ZOOM_TITLE}", fontsize=9)
+
+
 def specimen_curves_figure(groups, load, sizes, path):
-    """Every specimen's stress-strain curve and their mean, one panel per size."""
-    fig, axes = plt.subplots(1, len(sizes), figsize=(5.2 * len(sizes), 4.2), squeeze=False)
-    for ax, size in zip(axes[0], sizes):
-        curves = groups[(load, size)]
-        for k, c in enumerate(curves, start=1):
-            ax.plot(c["mean_strain"], c["stress_MPa"], lw=0.8, alpha=0.6, label=f"seed {k}")
-        x, y = mean_curve(curves, "stress_MPa", after_end=0.0)
-        ax.plot(x, y, "k", lw=2.2, label="mean")
-        _strain_axis(ax, plots.STRESS_LABEL)
-        ax.set_title(f"{size:g} m cube, {load}")
-        ax.legend(fontsize=7)
+    """Every specimen's stress-strain curve and their mean, one panel per size;
+    under each, the same near the peak where the runs go on far past it (the
+    mean there on its own grid up to the zoom's reach: the whole run's is too coarse)."""
+    reaches = [_reach(groups[(load, size)]) for size in sizes]
+    rows = 1 + any(r is not None for r in reaches)
+    fig, axes = plt.subplots(rows, len(sizes), figsize=(5.2 * len(sizes), 4.2 * rows), squeeze=False,
+                             layout="constrained")
+    for column, size, reach in zip(axes.T, sizes, reaches):
+        curves, title = groups[(load, size)], f"{size:g} m cube, {load}"
+        for ax, upto in zip(column, (None, reach)):
+            for k, c in enumerate(curves, start=1):
+                ax.plot(c["mean_strain"], c["stress_MPa"], lw=0.8, alpha=0.6, label=f"specimen, seed {k}")
+            ax.plot(*mean_curve(curves, "stress_MPa", after_end=0.0, upto=upto), "k", lw=2.2,
+                    label=f"mean of the {len(curves)} at equal strain")
+            _strain_axis(ax, plots.STRESS_LABEL)
+        column[0].set_title(title)
+        column[0].legend(fontsize=7)
+        if reach is not None:
+            _zoom(column[1], reach, title)
+        elif rows == 2:
+            column[1].set_visible(False)
     _save(fig, path)
+    return fig
 
 
 def mean_curves_figure(groups, load, sizes, path):
-    fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    for size in sizes:
-        x, y = mean_curve(groups[(load, size)], "stress_MPa", after_end=0.0)
-        ax.plot(x, y, lw=1.6, label=f"{size:g} m")
-    _strain_axis(ax, "mean normal stress [MPa]")
-    ax.set_title(f"mean stress-strain curves, {load} loading")
-    ax.legend(fontsize=8)
+    """The mean curve of each size; beside it, the same near the peaks where the runs go on far past them."""
+    reach = _reach([c for size in sizes for c in groups[(load, size)]])
+    fig, axes = plt.subplots(1, 1 + (reach is not None), figsize=(6.4 * (1 + (reach is not None)), 4.4),
+                             squeeze=False, layout="constrained")
+    title = f"mean stress-strain curves, {load} loading"
+    for ax, upto in zip(axes[0], (None, reach)):
+        for size in sizes:
+            curves = groups[(load, size)]
+            ax.plot(*mean_curve(curves, "stress_MPa", after_end=0.0, upto=upto), lw=1.6,
+                    label=f"{size:g} m: mean of {len(curves)} specimen" + "s" * (len(curves) > 1))
+        _strain_axis(ax, "mean normal stress [MPa]")
+    axes[0, 0].set_title(title)
+    axes[0, 0].legend(fontsize=8)
+    if reach is not None:
+        _zoom(axes[0, 1], reach, title)
     _save(fig, path)
+    return fig
 
 
 def fracture_energy_figure(cases, load, sizes, path):
@@ -205,10 +237,10 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
         for r in (r for r in table if r["load"] == load):
             ref = r["ref_peak_stress_MPa"] != ""
             rows.append([f"{r['size_m']:g}", r["seeds"], f"{r['peak_stress_MPa_mean']:.3f}",
-                         f"{r['peak_stress_MPa_cv']:.3f}",
+                         num_cell(r['peak_stress_MPa_cv'], ".3f"),
                          f"{r['ref_peak_stress_MPa']:.2f} ({pct(r['peak_stress_MPa_mean'], r['ref_peak_stress_MPa'])})"
                          if ref else "-",
-                         f"{r['strain_at_peak_mean']:.3e}", f"{r['strain_at_peak_cv']:.3f}",
+                         f"{r['strain_at_peak_mean']:.3e}", num_cell(r['strain_at_peak_cv'], ".3f"),
                          f"{r['ref_strain_at_peak']:.2e} ({pct(r['strain_at_peak_mean'], r['ref_strain_at_peak'])})"
                          if ref else "-", f"{r['edge_strain_at_peak_mean']:.3e}", f"{r['wall_s_mean']:.0f}"])
         md += [f"### {load}", "", md_table(

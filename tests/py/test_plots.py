@@ -1,13 +1,13 @@
 """The figures of a run (ldem.plots), checked in the matplotlib objects the
-plotting functions return: a run to separation has zoom panels over its
-pre-peak and softening, a specimen's axes carry its own quantities, and the
+plotting functions return: a run far past its peak has zoom panels that
+hold the peak, each line says what it marks, a specimen's axes carry its own quantities, and the
 energy figure shows each energy apart. Synthetic curves: no run needed."""
 
 import numpy as np
 import pytest
 
 import ldem
-from ldem import plots
+from ldem import plots, report
 from conftest import ROOT
 
 
@@ -26,42 +26,54 @@ def _separation_run(n: int = 2000):
     return curve, summary
 
 
-def test_a_run_to_separation_has_a_zoom_panel_over_its_peak_and_softening():
+def test_a_run_far_past_its_peak_has_a_zoom_panel_that_holds_the_peak():
     curve, summary = _separation_run()
     fig = plots.curve_plot(curve, summary, "cube")
     whole, zoom = fig.axes
     assert whole.get_xlim()[1] >= 0.06  # the whole run
-    assert zoom.get_xlim() == pytest.approx((0.0, plots.ZOOM * 1e-3))  # a few times the strain at load loss
+    reach = plots.ZOOM * summary["strain_at_peak"]
+    assert zoom.get_xlim() == pytest.approx((0.0, reach))  # a few times the strain at the peak
     lo, hi = zoom.get_ylim()
     assert lo < 0.0 and 2.0 < hi < 2.2  # the peak inside, not the late spike's limits
     peak = [line for line in zoom.get_lines() if line.get_marker() == "o"]
-    assert peak and zoom.get_xlim()[0] < peak[0].get_xdata()[0] < zoom.get_xlim()[1]
+    assert peak and peak[0].get_xdata()[0] == pytest.approx(reach / plots.ZOOM)  # a quarter of the axis, not a sliver
 
 
-def test_a_run_that_stops_near_its_softening_has_no_zoom_panel():
+def test_a_load_loss_a_few_times_past_the_run_s_end_still_zooms_on_the_peak():
+    """The dog-bone's case (issue 40): the run ends at 3.5 x its load loss but
+    50 x its strain at the peak; a zoom to a few times the load loss's strain
+    still squeezed the peak. The zoom follows the peak, the load loss aside."""
     curve, summary = _separation_run()
-    short = curve["mean_strain"] <= 1.5e-3  # ZOOM x the load loss (and x where the stress is 10 % of the peak) beyond
+    short = curve["mean_strain"] <= 5e-3
     curve = {k: v[short] for k, v in curve.items()}
-    assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
-    summary.pop("load_loss")
-    assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
-
-
-@pytest.mark.parametrize("loss", [None, 0.03], ids=["no load loss", "late load loss"])
-def test_a_late_load_loss_zooms_to_where_the_stress_fell_below_a_tenth_of_the_peak(loss):
-    """A triangular cube hinges: its load loss comes late (ZOOM x it beyond the
-    run) or never, yet its whole axis hides the peak. The zoom then ends at
-    ZOOM x the first strain past the peak with the stress below 10 % of it."""
-    curve, summary = _separation_run()
-    summary["load_loss"] = {"mean_strain": loss} if loss else None
-    x, y = curve["mean_strain"], curve["stress_MPa"]
-    softened = x[(x > 1e-4) & (y < 0.1 * y.max())][0]
-    assert softened == pytest.approx(1e-4 + 2e-4 * np.log(10), rel=0.02)  # 2 exp(-(x - 1e-4)/2e-4) = 0.2
     whole, zoom = plots.curve_plot(curve, summary, "cube").axes
-    assert zoom.get_xlim() == pytest.approx((0.0, plots.ZOOM * softened))
-    assert "10% of the peak" in zoom.get_title()
+    assert zoom.get_xlim() == pytest.approx((0.0, plots.ZOOM * summary["strain_at_peak"]))
+    assert plots.ZOOM * summary["strain_at_peak"] < 0.1 * whole.get_xlim()[1]
+
+
+def test_a_run_that_stops_near_its_peak_has_no_zoom_panel():
+    curve, summary = _separation_run()
+    near = curve["mean_strain"] <= 0.99 * plots.FAR * plots.ZOOM * summary["strain_at_peak"]
+    curve = {k: v[near] for k, v in curve.items()}
+    assert len(plots.curve_plot(curve, summary, "cube").axes) == 1
     each = plots.energy_plot(curve, summary).axes[1]
-    assert each.get_xlim() == pytest.approx((0.0, plots.ZOOM * softened))
+    assert each.get_xlim()[1] == pytest.approx(curve["mean_strain"][-1])  # the whole run: no zoom
+
+
+def test_each_vertical_line_says_what_it_marks():
+    """The load loss and the separation, in both panels where they fall inside,
+    labelled with what they are (not a bare '10 % of the peak' on a strain)."""
+    curve, summary = _separation_run()
+    summary["parameters"] = {"stop_fraction": 0.2}
+    whole, zoom = plots.curve_plot(curve, summary, "cube").axes
+    marks = {line.get_label(): line.get_xdata()[0] for line in whole.get_lines() if line.get_linestyle() in (":", "--", "-.")
+             and len(line.get_xdata()) == 2 and line.get_xdata()[0] == line.get_xdata()[1]}
+    assert marks == {"load lost: averaged stress < 0.2 x the peak": 1e-3,
+                     "separated: no intact bars join the loaded faces": 0.06}
+    labels = [t.get_text() for t in whole.get_legend().get_texts()]
+    assert set(marks) <= set(labels) and "support (reaction)" in labels and any(t.startswith("peak 2.000 MPa")
+                                                                                 for t in labels)
+    assert not any("10%" in t for ax in (whole, zoom) for t in [ax.get_title()] + [x.get_label() for x in ax.get_lines()])
 
 
 def test_the_energy_figure_shows_each_energy_over_the_zoom():
@@ -69,7 +81,7 @@ def test_the_energy_figure_shows_each_energy_over_the_zoom():
     fig = plots.energy_plot(curve, summary)
     whole, each = fig.axes
     assert whole.get_xlim()[1] >= 0.06
-    assert each.get_yscale() == "log" and each.get_xlim() == pytest.approx((0.0, plots.ZOOM * 1e-3))
+    assert each.get_yscale() == "log" and each.get_xlim() == pytest.approx((0.0, plots.ZOOM * 1e-4), rel=0.01)
     assert {line.get_label() for line in each.get_lines()} == {"external work", "elastic", "fracture",
                                                               "damping", "kinetic"}
     kinetic = next(line for line in each.get_lines() if line.get_label() == "kinetic")
@@ -86,6 +98,17 @@ def test_a_beam_s_axes_are_its_own_quantities():
     assert labels[0] == ("deflection/D [-]", "F/(bD) [MPa]") and labels[-1] == ("CMOD [mm]", "F/(bD) [MPa]")
     for x, y in labels:
         assert "stress" not in y and "mean strain" not in x and "probe" not in x
+
+
+def test_a_beam_s_cmod_panel_has_an_inset_on_its_peak():
+    """The CMOD runs to 60 x its value at the peak: an inset to ZOOM x it."""
+    test = ldem.SpecimenTest.from_file(f"{ROOT}/examples/beam_3pb_cmod.toml")
+    curve, summary = _separation_run(200)
+    curve["cmod_m"] = curve["mean_strain"] * 1e-2
+    cmod = plots.curve_plot(curve, summary, test.describe(), plots.axis_labels(test)).axes[2]
+    (inset,) = cmod.child_axes
+    at_peak = 1e3 * curve["cmod_m"][np.argmax(curve["stress_MPa"])]  # mm
+    assert inset.get_xlim() == pytest.approx((0.0, plots.ZOOM * at_peak)) and inset.get_ylim()[1] > 2.0
 
 
 def test_a_cube_keeps_normal_stress_and_mean_strain():
@@ -121,3 +144,30 @@ def test_undamaged_bars_stand_out_on_white(tmp_path):
     a = undamaged.get_alpha()
     seen = a * np.asarray(undamaged.get_edgecolor()[0][:3]) + (1 - a)  # over white
     assert 1.05 / (_luminance(seen) + 0.05) >= 2.0
+
+
+def test_the_study_s_curves_and_mean_curves_zoom_on_the_peak(tmp_path):
+    """curves_LOAD and mean_curves_LOAD: a zoom to ZOOM x the strain at the
+    peak, where the mean is drawn on its own grid (the whole run's 400 points,
+    1.5e-4 apart over 0.06, would cut the peak at 1e-4 down to 1.56 MPa)."""
+    curve, summary = _separation_run()
+    weaker = dict(curve, stress_MPa=0.9 * curve["stress_MPa"])
+    groups = {("uniform", 0.04): [curve, weaker], ("uniform", 0.08): [weaker]}
+    reach = plots.ZOOM * summary["strain_at_peak"]
+    fig = report.specimen_curves_figure(groups, "uniform", [0.04, 0.08], str(tmp_path / "curves.png"))
+    whole, zoom = fig.axes[0], fig.axes[2]  # the first size: the whole run, its zoom below (2 x 2, by rows)
+    assert whole.get_xlim()[1] >= 0.06 and zoom.get_xlim() == pytest.approx((0.0, reach))
+    mean = next(line for line in zoom.get_lines() if line.get_label() == "mean of the 2 at equal strain")
+    assert mean.get_ydata().max() == pytest.approx(0.95 * 2.0, rel=0.01)
+    assert [t.get_text() for t in whole.get_legend().get_texts()] == [
+        "specimen, seed 1", "specimen, seed 2", "mean of the 2 at equal strain"]
+    fig = report.mean_curves_figure(groups, "uniform", [0.04, 0.08], str(tmp_path / "mean_curves.png"))
+    whole, zoom = fig.axes
+    assert zoom.get_xlim() == pytest.approx((0.0, reach))
+    assert [line.get_ydata().max() for line in zoom.get_lines()] == pytest.approx([1.9, 1.8], rel=0.01)
+    assert [t.get_text() for t in whole.get_legend().get_texts()] == ["0.04 m: mean of 2 specimens",
+                                                                      "0.08 m: mean of 1 specimen"]
+    near = curve["mean_strain"] <= 0.99 * plots.FAR * reach  # a run that stops near its peak: no zoom
+    short = {k: [{c: v[near] for c, v in x.items()} for x in g] for k, g in groups.items()}
+    assert len(report.specimen_curves_figure(short, "uniform", [0.04, 0.08], str(tmp_path / "c.png")).axes) == 2
+    assert len(report.mean_curves_figure(short, "uniform", [0.04, 0.08], str(tmp_path / "m.png")).axes) == 1

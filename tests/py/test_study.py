@@ -58,6 +58,28 @@ def test_mean_cv_and_aggregation():
     assert (r["ref_peak_stress_MPa"], r["ref_strain_at_peak"]) == (2.45, 1.47e-4)  # Table 3
 
 
+def test_one_value_has_no_cv():
+    """A CV over one specimen is no measure of scatter: "" (a table's "-"), never 0."""
+    assert study.mean_cv([2.5]) == (2.5, "")
+    assert study.mean_cv([2.0, 4.0])[1] == pytest.approx(2 ** 0.5 / 3)
+
+
+def test_a_one_seed_study_prints_and_tabulates_no_cv(tmp_path, cli):
+    out = tmp_path / "one"
+    r = cli("study", "size-effect", "--out", str(out), "--sizes", "0.04", "--seeds", "1", "--loads", "uniform",
+            "--strain-rate", "0.5", "--threads", "1", "--jobs", "1", "--no-progress")
+    assert r.returncode == 0, r.stderr
+    (line,) = [x for x in r.stdout.splitlines() if x.lstrip().startswith("uniform ")]
+    assert "(cv -)" in line and "cv 0" not in line
+    (row,) = study.read_csv(str(out / "summary.csv"))
+    assert [row[k] for k in row if k.endswith("_cv")] == [""] * 6  # peak, strain, U_num, load loss, U_final, cut
+    report = (out / "report.md").read_text()
+    peaks = next(x for x in report.splitlines() if x.startswith("| 0.04 | 1 |")).split(" | ")
+    assert (peaks[3], peaks[6]) == ("-", "-")  # the CVs of the peak and of its strain
+    energies = next(x for x in report.splitlines() if x.startswith("| uniform | 0.04 |")).split(" | ")
+    assert energies[7] == "-"  # U_num/U_min's CV
+
+
 def test_peak_of_the_mean_curve():
     # Two specimens: a peak of 1 MPa at 1e-4 (then split), and 3 MPa at 3e-4.
     # Mean of the peaks: 2 MPa at 2e-4; the mean curve peaks at 3e-4 with 1.5 MPa

@@ -11,6 +11,7 @@ from typing import Dict, List, Optional, Tuple
 import numpy as np
 
 from .. import io
+from ..markdown import mean_cv_cell
 
 DATA = os.path.join("..", "shared", "data", "gregoire2013")  # beside the repository
 NAMES = {0.0: "no notch", 0.2: "notch D/5", 0.5: "notch D/2"}
@@ -96,7 +97,7 @@ def comparison_rows(out: str, data: str) -> List[dict]:
         cmods = [cmod_at_peak(c) for c in curves]
         ratio = float(p["peak_load_kN"]) / float(m["peak_load_kN"])
         rows.append({"D_mm": beam[0], "notch": beam[1], "predicted_kN": float(p["peak_load_kN"]),
-                     "cv": float(p["cv"]), "min_kN": float(p["min_kN"]), "max_kN": float(p["max_kN"]),
+                     "cv": p["cv"], "min_kN": float(p["min_kN"]), "max_kN": float(p["max_kN"]),
                      "measured_kN": float(m["peak_load_kN"]),
                      "envelope_kN": (m["peak_of_min_envelope_kN"], m["peak_of_max_envelope_kN"]),
                      "ratio": ratio, "difference_pct": 100.0 * (ratio - 1.0),
@@ -117,7 +118,7 @@ def table_lines(rows: List[dict]) -> List[str]:
              "(min-max) | CMOD at peak, measured [mm] |", "|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         c = r["cmod_predicted_mm"]
-        lines.append(f"| D = {r['D_mm']:g} mm, {NAMES[r['notch']]} | {r['predicted_kN']:.3f} ({r['cv']:.3f}) | "
+        lines.append(f"| D = {r['D_mm']:g} mm, {NAMES[r['notch']]} | {mean_cv_cell(r['predicted_kN'], r['cv'])} | "
                      f"{r['min_kN']:.3f}-{r['max_kN']:.3f} | {r['measured_kN']:.3f} | {_envelope(r['envelope_kN'])} | "
                      f"{r['ratio']:.3f} | {r['difference_pct']:+.1f} % | {c[0]:.4f} ({c[1]:.4f}-{c[2]:.4f}) | "
                      f"{r['cmod_measured_mm']:.4f} |")

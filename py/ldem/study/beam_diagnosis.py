@@ -21,8 +21,10 @@ from dataclasses import dataclass
 from typing import Callable, Dict, List, Sequence, Tuple
 
 from .. import io
+from ..markdown import mean_cv_cell
 from .beams import GF, PREDICTION, Beam, Variant, calibrate
 from .executors import run_cases
+from .tables import mean_cv
 
 BEAMS = ((0.05, 0.0), (0.05, 0.5), (0.1, 0.2))
 MEASURED_KN = {(0.05, 0.0): 4.649, (0.05, 0.5): 0.979, (0.1, 0.2): 4.496}  # ../shared/data/gregoire2013/measured.csv
@@ -120,11 +122,11 @@ def write_table(out: str, seeds: int) -> List[dict]:
             if not p:
                 continue
             base = peaks(out, FACTORS[0], D, n, seeds)
-            mean = statistics.mean(p.values())
+            mean, cv = mean_cv(list(p.values()))
             same = [base[s] for s in p if s in base]  # the prediction's specimens of the same seeds
             rows.append({"factor": f.name, "label": f.label, "eps_p": eps.get(f.name, PREDICTION_EPS_P),
                          "D_mm": D * 1e3, "notch": n, "seeds": len(p), "peak_kN": mean,
-                         "cv": statistics.stdev(p.values()) / mean if len(p) > 1 else 0.0,
+                         "cv": cv,
                          "change": mean / statistics.mean(same) - 1 if len(same) == len(p) else "",
                          "measured_kN": MEASURED_KN[(D, n)]})
     io.write_table(os.path.join(out, "diagnosis.csv"), rows, COLUMNS)
@@ -143,7 +145,7 @@ def markdown(rows: List[dict]) -> List[str]:
         cells = []
         for b in BEAMS:
             r = mine.get(b)
-            cells.append("-" if r is None else f"{r['peak_kN']:.3f} ({r['cv']:.3f})" +
+            cells.append("-" if r is None else mean_cv_cell(r['peak_kN'], r['cv']) +
                          (f", {r['change']:+.1%}" if r["change"] != "" and f.name != "prediction" else "") +
                          ("" if r["seeds"] == 6 else f" [{r['seeds']} seeds]"))
         eps = next(iter(mine.values()))["eps_p"]

@@ -18,10 +18,12 @@ from dataclasses import dataclass
 from typing import Callable, List, Sequence, Tuple
 
 from .. import io
+from ..markdown import num_cell
 from .concrete import mc2010_fracture_energy, prism as tension_prism
 from ..specimen import SpecimenTest
 from .cases import Named
 from .executors import run_cases
+from .tables import mean_cv
 
 E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
 GF = mc2010_fracture_energy(FC)  # fib MC2010 eq. 5.1-9 [N/m]
@@ -207,10 +209,10 @@ def write_predictions(out: str, seeds: int, log: Callable[[str], None] = print) 
             if not loads:
                 log(f"D {D * 1e3:g} mm, notch {notch:g}: no specimen finished")
                 continue
-            rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": statistics.mean(loads),
-                         "cv": statistics.stdev(loads) / statistics.mean(loads) if len(loads) > 1 else 0.0,
+            mean, cv = mean_cv(loads)
+            rows.append({"D_mm": D * 1e3, "notch_ratio": notch, "peak_load_kN": mean, "cv": cv,
                          "seeds": len(loads), "min_kN": min(loads), "max_kN": max(loads)})
     io.write_table(os.path.join(out, "predictions.csv"), rows, PREDICTION_COLUMNS)
     for r in rows:
-        log(f"{r['D_mm']:g} mm, notch {r['notch_ratio']:g}: {r['peak_load_kN']:.3f} kN (CV {r['cv']:.3f})")
+        log(f"{r['D_mm']:g} mm, notch {r['notch_ratio']:g}: {r['peak_load_kN']:.3f} kN (CV {num_cell(r['cv'], '.3f')})")
     return rows

@@ -9,7 +9,7 @@ import shutil
 from typing import Dict
 
 from .. import io, plots
-from ..markdown import md_table, num_cell
+from ..markdown import md_table, mean_cv_cell, num_cell
 from .cases import load_slice, read_discussion
 from .mesh_tables import FINE_L0, PEAK_TOLERANCE, TRIANGULAR_FINAL_STRAIN, U_TOLERANCE, VARIANTS, verdict
 
@@ -82,9 +82,9 @@ def _order(t: dict) -> tuple:
 
 
 def _law_rows(laws: Dict[float, dict]):
-    return [[f"{m:g}", f"{w['peak_stress_MPa_mean']:.3f} ({w['peak_stress_MPa_cv']:.3f})",
-             f"{w['strain_at_peak_mean']:.3e} ({w['strain_at_peak_cv']:.3f})",
-             f"{w['U_ratio_mean']:.3f} ({w['U_ratio_cv']:.3f}), {w['separated']} of {w['seeds']}",
+    return [[f"{m:g}", mean_cv_cell(w['peak_stress_MPa_mean'], w['peak_stress_MPa_cv']),
+             mean_cv_cell(w['strain_at_peak_mean'], w['strain_at_peak_cv'], ".3e"),
+             f"{mean_cv_cell(w['U_ratio_mean'], w['U_ratio_cv'])}, {w['separated']} of {w['seeds']}",
              f"{w['eps_p']:.4g}", f"{w['Gf_mean']:g}", f"{w['Gf_cv']:.4g}", f"{w['c_a']:.4g}",
              num_cell(w.get("calibrated_eps_p", ""), ".4g"), num_cell(w.get("calibrated_c_a", ""), ".4g")]
             for m, w in sorted(laws.items())]
@@ -147,10 +147,10 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: i
                      "/ fine", "U_num/U_min (CV)", "/ fine", "clamped", "bars", "wall s", "speed-up",
                      "fewer bar-steps"],
                     [[t["load"], f"{t['size_m']:g}", f"{t['module_m']:g}", t["variant"], t["seeds"],
-                      f"{t['peak_stress_MPa_mean']:.3f} ({t['peak_stress_MPa_cv']:.3f})",
+                      mean_cv_cell(t['peak_stress_MPa_mean'], t['peak_stress_MPa_cv']),
                       num_cell(t["peak_vs_fine"], ".3f"), f"{t['strain_at_peak_mean']:.3e}",
                       num_cell(t["strain_vs_fine"], ".3f"),
-                      "-" if t["U_ratio_mean"] == "" else f"{t['U_ratio_mean']:.3f} ({t['U_ratio_cv']:.3f})",
+                      "-" if t["U_ratio_mean"] == "" else mean_cv_cell(t['U_ratio_mean'], t['U_ratio_cv']),
                       num_cell(t["U_vs_fine"], ".3f"), f"{t['clamped_fraction']:.3f}", t["n_bars"],
                       f"{t['wall_s_mean']:.1f}", num_cell(t["speedup"], ".0f"), num_cell(t["work_ratio"], ".0f")]
                      for t in sorted(table, key=_order)]),

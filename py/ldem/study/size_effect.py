@@ -9,6 +9,7 @@ import time
 from typing import Optional, Sequence
 
 from .. import io
+from ..markdown import num_cell
 from ..cube import CubeTest
 from .cases import (TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, load_case, load_curves, read_discussion,
                     size_effect_tests)
@@ -74,7 +75,7 @@ def cmd_size_effect(args) -> int:
           + ("" if args.no_report else ", report.md and figures"))
     for r in table:
         print(f"  {r['load']:10s} {r['size_m']:.2f} m: peak {r['peak_stress_MPa_mean']:.3f} MPa "
-              f"(cv {r['peak_stress_MPa_cv']:.3f}) at {r['strain_at_peak_mean']:.3e}, "
+              f"(cv {num_cell(r['peak_stress_MPa_cv'], '.3f')}) at {r['strain_at_peak_mean']:.3e}, "
               + (f"U_num/U_min {r['U_ratio_mean']:.3f}" if r["separated"] else "U_num -")
               + f" ({r['separated']} of {r['seeds']} separated), at load loss "
               + (f"{r['U_loss_ratio_mean']:.3f}" if r["U_loss_ratio_mean"] != "" else "-")

@@ -50,10 +50,12 @@ def case_row(s: dict) -> dict:
 
 
 def mean_cv(values) -> tuple:
-    """Mean and coefficient of variation (sample standard deviation, n - 1, over the mean)."""
+    """Mean and coefficient of variation (sample standard deviation, n - 1, over
+    the mean); the CV is "" (no value, a table's "-") over fewer than two values
+    or a zero mean: one specimen has no scatter to measure, and 0 would claim none."""
     v = np.asarray(values, dtype=float)
     m = float(v.mean())
-    cv = float(v.std(ddof=1) / abs(m)) if len(v) > 1 and m != 0 else 0.0
+    cv = float(v.std(ddof=1) / abs(m)) if len(v) > 1 and m != 0 else ""
     return m, cv
 
 

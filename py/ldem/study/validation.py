@@ -30,6 +30,7 @@ from .cases import Named
 from .executors import run_cases
 from .options import add_seeds, seed_count
 from .registry import Study, register
+from .tables import mean_cv
 
 
 @dataclass(frozen=True)
@@ -104,8 +105,8 @@ def write_prediction(out: str, name: str, seeds: int) -> dict:
         peaks.append(s["peak_stress_MPa"] * 1e3)
         at.append(float(x[int(np.argmax(load))]))
         curves[f"x_s{seed}"], curves[f"load_kN_s{seed}"] = x, load
-    mean = statistics.mean(peaks)
-    row = {"specimen": name, "peak_load_kN": mean, "cv": statistics.stdev(peaks) / mean if len(peaks) > 1 else 0.0,
+    mean, cv = mean_cv(peaks)
+    row = {"specimen": name, "peak_load_kN": mean, "cv": cv,
            "seeds": len(peaks), "min_kN": min(peaks), "max_kN": max(peaks), "x_at_peak": statistics.mean(at),
            "x_label": b.x_label, "calibration": "docs/calibration.md"}
     io.write_table(os.path.join(out, "predictions.csv"), [row], COLUMNS)
