@@ -347,9 +347,8 @@ def main(argv):
     a = parse(argv)
     if (a.radius <= 0 or a.young <= 0 or a.eps_crack_onset <= 0 or a.rel_ductility <= 0 or a.strain_rate <= 0
             or min(a.size) < 4 * a.radius or a.spheres_in_cell < 10):
-        print("error: radius, young, eps-crack-onset, rel-ductility, strain-rate must be positive, "
-              "sizes at least 4 radii, spheres-in-cell >= 10", file=sys.stderr)
-        return 2
+        raise ValueError("radius, young, eps-crack-onset, rel-ductility, strain-rate must be positive, "
+                         "sizes at least 4 radii, spheres-in-cell >= 10")  # exit_with: one line, rc 2
     ok = True
     for L in a.size:
         out = a.out if len(a.size) == 1 else os.path.join(a.out, f"size_{L:g}")

@@ -8,7 +8,7 @@ triangle:
     rupture beyond eps_r -> tension after rupture (no force) -> compression after
     rupture (crack closure, elastic) -> tension again -> compression.
 
-Four bars, each its own pair of nodes (node 1 held, node 2 placed on the path
+Five bars, each its own pair of nodes (node 1 held, node 2 placed on the path
 before every step, so YADE integrates nothing and only its law is tested):
   normal    along x, L = L0, EA of an interior normal bar, eps_r = 5 eps_p
   diagonal  along (1,1,1), L = sqrt(3)/2 L0, EA of a diagonal bar, eps_r = 2.5 eps_p

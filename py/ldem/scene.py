@@ -45,19 +45,37 @@ def _yade_threads() -> int:
     return O.numThreads
 
 
+def _input_error(e: Exception):
+    """The one line that tells a user's mistake (a bad value: ValueError, as
+    `ldem` reads it; a file that cannot be read: OSError; a YADE script run
+    without YADE); None for anything else, a bug, whose traceback is wanted."""
+    if isinstance(e, (ValueError, OSError)):
+        return str(e)
+    if isinstance(e, ModuleNotFoundError) and (e.name or "").split(".")[0] == "yade":
+        return "YADE is not loaded: run this script with yade-double -n -x"
+    return None
+
+
 def exit_with(main, *args) -> None:
     """Runs main(*args) and ends the process with its exit code (None counts as
-    0; an exception prints its traceback and gives 1; argparse's SystemExit
-    keeps its code). Scripts run by `yade-double -x` end this way, because a
-    plain sys.exit there can hang in YADE's shutdown or drop into its shell."""
+    0; argparse's SystemExit keeps its code; a bad input (ValueError, as `ldem`
+    reads it) or a file that cannot be read (OSError) is one line on stderr and
+    gives 2; any other exception, a bug, prints its traceback and gives 1).
+    Scripts run by `yade-double -x` end this way, because a plain sys.exit there
+    can hang in YADE's shutdown or drop into its shell."""
     code = 1
     try:
         code = main(*args) or 0
     except SystemExit as e:
         code = e.code if isinstance(e.code, int) else 2
-    except Exception:
-        import traceback
-        traceback.print_exc()
+    except Exception as e:
+        line = _input_error(e)
+        if line is None:
+            import traceback
+            traceback.print_exc()
+        else:
+            print(f"{os.path.basename(sys.argv[0]) or 'scene'}: error: {line}", file=sys.stderr)
+            code = 2
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)

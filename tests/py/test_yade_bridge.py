@@ -138,3 +138,27 @@ def test_a_notched_beam_in_yade_is_ldem_s(yade, tmp_path):
     steps, peak_l, peak_y, d_peak, d_curve, broken_l, broken_y = (float(g) for g in m.groups())
     assert steps > 1000 and d_peak <= 1e-8 and d_curve <= 1e-8 and broken_l == broken_y > 10
     assert 0.5e6 < peak_l < 5e6  # a nominal stress of concrete, positive for a push
+
+
+@pytest.mark.parametrize("script, args, message", [
+    ("yade_specimen.py", ["none.toml"], "none.toml: No such file or directory"),
+    ("yade_specimen.py", [os.path.join(ROOT, "examples", "beam_3pb_cmod.toml")], "drives by displacement only"),
+    ("yade_separation.py", ["--modules", "3"], "YADE is not loaded: run this script with yade-double -n -x"),
+    ("yade_native_cpm.py", ["--radius", "-1"], "must be positive"),
+], ids=["missing file", "CMOD control", "without YADE", "bad value"])
+def test_a_bad_input_ends_in_one_line(tmp_path, script, args, message):
+    """Issue 40: a missing file, a specimen the bridge cannot drive (refused
+    before ldem runs it: within seconds), or YADE absent end in one line and
+    rc 2, never a traceback. Under /usr/bin/python3: the argument handling is
+    YADE's same Python (test_a_bad_input_ends_in_one_line_under_yade)."""
+    r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", script), *args], capture_output=True,
+                       text=True, cwd=tmp_path, timeout=30, env=subprocess_env())
+    assert r.returncode == 2 and "Traceback" not in r.stderr, r.stderr
+    (line,) = r.stderr.strip().splitlines()
+    assert line.startswith(f"{script}: error: ") and message in line
+
+
+def test_a_bad_input_ends_in_one_line_under_yade(yade, tmp_path):
+    r = run_yade(yade, "yade_specimen.py", "none.toml", cwd=tmp_path)
+    assert r.returncode == 2 and "Traceback" not in r.stdout + r.stderr, r.stdout + r.stderr
+    assert "yade_specimen.py: error: none.toml: No such file or directory" in r.stderr.splitlines()
