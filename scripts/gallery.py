@@ -3,6 +3,10 @@ folder holds its finished run already: a study's case, ldem.study.Named) and put
 in docs/gallery/NAME.png, at their own scale: one font size across the panels.
 
     /usr/bin/python3 scripts/gallery.py [--runs out/gallery] [--out docs/gallery] [--threads 1] [--only NAME ...]
+                                        [--set NAME=VALUE ...]
+
+README.md's pictures are two of these (docs/gallery/beam_3pb.png, cube_triangular.png);
+tests/py/test_specimen_file.py runs this script (a short stretch: --set final_strain=...).
 """
 import argparse
 import glob
@@ -18,6 +22,7 @@ import numpy as np  # noqa: E402
 import ldem  # noqa: E402
 import ldem.plots  # noqa: E402,F401  (the figures' style, whose dpi the gallery keeps)
 from ldem import study  # noqa: E402
+from ldem.cube import settings  # noqa: E402
 from ldem.runner import default_writers  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
@@ -46,11 +51,14 @@ def main() -> None:
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "gallery"), help="where the pictures go")
     ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run")
     ap.add_argument("--only", nargs="+", metavar="NAME", help="these examples only (e.g. beam_3pb)")
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="a parameter over every file's, as ldem run's --set (e.g. final_strain=1e-4 for a short stretch)")
     args = ap.parse_args()
     os.makedirs(args.out, exist_ok=True)
     examples = {os.path.splitext(os.path.basename(p))[0]: p
                 for p in sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml")))}
-    tests = [study.Named(ldem.SpecimenTest.from_file(path, {"threads": args.threads}), name, default_writers(), "")
+    overrides = {"threads": args.threads, **settings(args.set)}
+    tests = [study.Named(ldem.SpecimenTest.from_file(path, overrides), name, default_writers(), "")
              for name, path in examples.items() if not args.only or name in args.only]
     for t, s in zip(tests, study.run_cases(tests, args.runs, progress=False, log=lambda line: None)):
         name, run = t.name, study.case_dir(args.runs, t)

@@ -19,6 +19,7 @@ RUN_BY = {
     "yade-double -n -x scripts/yade_one_bar.py": ("test_yade_bridge.py", "yade_one_bar.py"),
     "mkdir -p out/logs && yade-double-batch --job-threads 1 --log 'out/logs/@.log' scripts/size_effect.table "
     "scripts/cube_tension.py": ("test_scenes.py", "yade-double-batch"),
+    "/usr/bin/python3 scripts/gallery.py": ("test_specimen_file.py", "scripts/gallery.py"),
 }
 # The two commands of the front door are the machine's set-up and CI's own (.ci/run), not a test's.
 SET_UP = {"bash install.sh && ldem cube", "bash tests/run_all.sh"}

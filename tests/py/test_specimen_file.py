@@ -3,6 +3,8 @@ loads, measures and probes, `ldem run FILE.toml` and the example gallery."""
 import glob
 import json
 import os
+import re
+import subprocess
 import tomllib
 
 import numpy as np
@@ -13,7 +15,7 @@ from ldem import _core
 from ldem.shapes import module_mask
 from ldem.specimen import SpecimenError, SpecimenTest
 
-from conftest import ROOT
+from conftest import ROOT, picture, subprocess_env
 
 EXAMPLES = sorted(glob.glob(os.path.join(ROOT, "examples", "*.toml")))
 FAST = {"strain_rate": 0.1, "stop_at": "load_loss", "threads": 1}
@@ -240,6 +242,26 @@ def test_each_example_runs(cli, tmp_path, path):
     gf = s["parameters"]["parameters"]["Gf_mean"]
     assert s["min_fracture_energy_J"] == (None if declared is None else pytest.approx(gf * declared, rel=1e-15))
     assert os.path.getsize(out / "cracks.png") > 0 and os.path.getsize(out / "bars.pvd") > 0
+
+
+def test_the_gallery_pictures_are_the_examples_and_its_command_draws_them(tmp_path):
+    """README's and docs/specimens.md's pictures docs/gallery/NAME.png are the
+    pictures of examples/NAME.toml, and the command docs/specimens.md names for
+    them (/usr/bin/python3 scripts/gallery.py) writes one: here on a short stretch."""
+    shown = set()
+    for page in ("README.md", os.path.join("docs", "specimens.md")):
+        shown |= set(re.findall(r"!\[[^]]*\]\((?:docs/)?gallery/(\w+)\.png\)", open(os.path.join(ROOT, page)).read()))
+    names = {os.path.splitext(os.path.basename(p))[0] for p in EXAMPLES}
+    committed = {os.path.splitext(p)[0] for p in os.listdir(os.path.join(ROOT, "docs", "gallery"))}
+    assert {"beam_3pb", "cube_triangular"} <= shown <= names and shown <= committed
+    r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "gallery.py"), "--only", "cube_uniform",
+                        "--runs", str(tmp_path / "runs"), "--out", str(tmp_path / "gallery"),
+                        "--set", "final_strain=1e-4"], capture_output=True, text=True, timeout=300, env=subprocess_env())
+    assert r.returncode == 0, r.stderr
+    assert r.stdout.startswith("cube_uniform: peak ") and os.listdir(tmp_path / "gallery") == ["cube_uniform.png"]
+    drawn = picture(tmp_path / "gallery" / "cube_uniform.png")
+    curve, cracks = (picture(tmp_path / "runs" / "cube_uniform" / n) for n in ("curve.png", "cracks.png"))
+    assert drawn.shape[1] == pytest.approx(curve.shape[1] + cracks.shape[1], rel=0.02)  # side by side, at their scale
 
 
 def test_a_specimen_runs_bit_for_bit_on_any_thread_count():
