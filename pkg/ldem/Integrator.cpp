@@ -18,41 +18,72 @@ inline T advanceDof(M held, T m, T invM, T f, const CentralDifference& cd, T& u,
     return held ? T{} : cd.Df * m * vBar * vBar * cd.dt;
 }
 
+// The same, damped relative to the DOF's mean velocity w (Integrator.hpp), which it moves on.
+template <class T, class M>
+inline T advanceDof(M held, T m, T invM, T f, const CentralDifference& cd, T& u, T& v, T& w) {
+    const T vNew = cd.a * v + cd.b * (f * invM + cd.Df * w);
+    const T vBar = 0.5 * (v + vNew);
+    const T work = cd.Df * m * (vBar - w) * vBar * cd.dt;
+    u = held ? u : u + cd.dt * vNew;
+    v = held ? v : vNew;
+    w = held ? w : w + (vNew - w) * cd.filter;
+    return held ? T{} : work;
+}
+
 // The mask bit `bit` of kBlock nodes from p, as lanes.
 inline BlockMask heldLanes(const std::uint8_t* p, unsigned bit) {
     BlockMask h;
     for (int k = 0; k < kBlock; ++k) h[k] = p[k] & bit;
     return h != 0;
 }
-}  // namespace
+
 
 // kBlock nodes at a time, the rest one by one. The damping work adds up in
 // kBlock lanes (node first + k + kBlock j in lane k), then lane after lane: the
-// same sum on any machine and for any thread count.
-double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
-                    const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
-                    const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
+// same sum on any machine and for any thread count. Mean: whether the damping
+// is relative to cd.mean (the DOF's extra argument, w).
+template <bool Mean>
+double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
+                      const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
+                      const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
+    Field3& w = Mean ? *cd.mean : v;  // (unused without a mean)
+    auto dof = [&](auto held, auto m, auto invM, auto fi, auto& ui, auto& vi, auto& wi) {
+        if constexpr (Mean) return advanceDof(held, m, invM, fi, cd, ui, vi, wi);
+        else return advanceDof(held, m, invM, fi, cd, ui, vi);
+    };
     Block damping = {};
     std::int32_t i = first;
     for (; i + kBlock <= end; i += kBlock) {
         const Block m = loadBlock(&mass[i]), invM = loadBlock(&invMass[i]);
         Block ux = loadBlock(&u.x[i]), uy = loadBlock(&u.y[i]), uz = loadBlock(&u.z[i]);
         Block vx = loadBlock(&v.x[i]), vy = loadBlock(&v.y[i]), vz = loadBlock(&v.z[i]);
-        damping += advanceDof(heldLanes(&mask[i], 1), m, invM, loadBlock(&f.x[i]), cd, ux, vx) +
-                   advanceDof(heldLanes(&mask[i], 2), m, invM, loadBlock(&f.y[i]), cd, uy, vy) +
-                   advanceDof(heldLanes(&mask[i], 4), m, invM, loadBlock(&f.z[i]), cd, uz, vz);
+        Block wx = {}, wy = {}, wz = {};
+        if constexpr (Mean) wx = loadBlock(&w.x[i]), wy = loadBlock(&w.y[i]), wz = loadBlock(&w.z[i]);
+        damping += dof(heldLanes(&mask[i], 1), m, invM, loadBlock(&f.x[i]), ux, vx, wx) +
+                   dof(heldLanes(&mask[i], 2), m, invM, loadBlock(&f.y[i]), uy, vy, wy) +
+                   dof(heldLanes(&mask[i], 4), m, invM, loadBlock(&f.z[i]), uz, vz, wz);
         storeBlock(ux, &u.x[i]), storeBlock(uy, &u.y[i]), storeBlock(uz, &u.z[i]);
         storeBlock(vx, &v.x[i]), storeBlock(vy, &v.y[i]), storeBlock(vz, &v.z[i]);
+        if constexpr (Mean) storeBlock(wx, &w.x[i]), storeBlock(wy, &w.y[i]), storeBlock(wz, &w.z[i]);
     }
     for (; i < end; ++i) {
         const unsigned held = mask[i];
-        damping[(i - first) % kBlock] += advanceDof<double, bool>(held & 1, mass[i], invMass[i], f.x[i], cd, u.x[i], v.x[i]) +
-                                         advanceDof<double, bool>(held & 2, mass[i], invMass[i], f.y[i], cd, u.y[i], v.y[i]) +
-                                         advanceDof<double, bool>(held & 4, mass[i], invMass[i], f.z[i], cd, u.z[i], v.z[i]);
+        const double m = mass[i], invM = invMass[i];
+        damping[(i - first) % kBlock] += dof(bool(held & 1), m, invM, f.x[i], u.x[i], v.x[i], w.x[i]) +
+                                         dof(bool(held & 2), m, invM, f.y[i], u.y[i], v.y[i], w.y[i]) +
+                                         dof(bool(held & 4), m, invM, f.z[i], u.z[i], v.z[i], w.z[i]);
     }
     double sum = 0.0;
     for (int k = 0; k < kBlock; ++k) sum += damping[k];
     return sum;
+}
+}  // namespace
+
+double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
+                    const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
+                    const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
+    return cd.mean ? advanceNodesOf<true>(first, end, mass, invMass, mask, cd, f, u, v)
+                   : advanceNodesOf<false>(first, end, mass, invMass, mask, cd, f, u, v);
 }
 
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,

@@ -20,8 +20,14 @@ inline double stableTimeStep(double omegaMax) { return 2.0 / omegaMax; }
 
 // The update  v <- a v + b f/m,  x <- x + dt v,  with
 //   a = (1 - D_f dt/2) / (1 + D_f dt/2),  b = dt / (1 + D_f dt/2).
+// With a mean velocity (relative damping, dynamics/MassDamping.hpp) the
+// damping force is -D_f m (v - vbar), vbar(n-1/2) known at the step:
+//   v(n+1/2) = a v(n-1/2) + b (f/m + D_f vbar(n-1/2)),
+//   vbar(n+1/2) = vbar(n-1/2) + (v(n+1/2) - vbar(n-1/2)) dt/tau   (filter = dt/tau).
 struct CentralDifference {
     double dt, Df, a, b;
+    Field3* mean = nullptr;  // vbar per node, or none (the damping on absolute velocity)
+    double filter = 0;       // dt/tau
     CentralDifference(double dt_, double Df_)
         : dt(dt_), Df(Df_), a((1 - 0.5 * Df_ * dt_) / (1 + 0.5 * Df_ * dt_)), b(dt_ / (1 + 0.5 * Df_ * dt_)) {}
 };
@@ -36,6 +42,9 @@ double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<doub
 // returns the work of the damping forces over the step, sum D_f m vbar^2 dt
 // with vbar the mean of v(n-1/2) and v(n+1/2). This choice makes the discrete
 // energy balance exact: 1/2 m (v+^2 - v-^2) = f (x(n+1) - x(n-1))/2 - D_f m vbar^2 dt.
+// Relative to a mean velocity w = cd.mean's vbar(n-1/2) the update gives
+// v+ - v- = dt (f/m - D_f (vbar - w)), so the work of the force actually applied is
+// sum D_f m (vbar - w) vbar dt (of either sign: the mean may move faster than the node).
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
                     const Field3& f, Field3& u, Field3& v);
 

@@ -119,7 +119,14 @@
 #define LDEM_MASS_DAMPING_PARAMETERS(X)                                                                      \
     X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                 \
       "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
-      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")
+      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")\
+    X(bool, tailDampingRelative, "tail_damping", false, "", Domain::choices({"absolute", "relative"}),        \
+      "the mass-proportional damping from the load loss on: on each node's absolute velocity, or relative "  \
+      "to its mean velocity (low-passed over damping_filter_periods): a part that moves with the drive is "  \
+      "then not dragged, a vibration at omega_1 damped by zeta x 0.994 (2 periods)")                          \
+    X(double, dampingFilterPeriods, "damping_filter_periods", 2.0, "", Domain::closed(0.5, 100),             \
+      "tail_damping relative: the time constant of each node's mean velocity, in fundamental periods "       \
+      "2 pi/omega_1; a vibration at omega keeps the ratio (omega tau)^2 / (1 + (omega tau)^2) of its damping")
 
 // Dashpots in the bars that have left their elastic branch (dynamics/BarDashpots.hpp).
 #define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \

@@ -339,20 +339,23 @@ void Simulation::restore(const Checkpoint& c) {
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(c.parts[k++].second); }, r);
     std::apply([&](auto&... d) { (d.setState(c.parts[k++].second), ...); }, dampings_);
     kineticAtPeak_.setState(c.parts[k++].second);
+    cd_ = nodeUpdate(dampings_, dt_);
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
     progress_.pendingAdvance = true;
 }
 
-// The record's events, in order: the load loss (and the drive's response to
-// it), the stop rules' events, the quasi-static flag.
+// The record's events, in order: the load loss (and the drive's and the
+// dampings' responses to it), the stop rules' events, the quasi-static flag.
 void Simulation::recordParts(const CurvePoint& p) {
     RunSummary& s = progress_.summary;
     const bool lossBefore = s.loadLoss.reached();
     const bool lost = loadLoss_.record(p, s);
     const DriveRecord dr{p, s, !lossBefore && s.loadLoss.reached(), dt_};
     std::visit([&](auto& d) { d.record(dr); }, drive_);
+    recordDampings(dampings_, DampingRecord{s, v_});
+    cd_ = nodeUpdate(dampings_, dt_);  // (relative damping: from the load loss on)
     const std::function<bool()> joined = [this] { return facesJoined(); };
     StopRecord sr{p, s, lost, joined};
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.record(sr); }, r);

@@ -134,6 +134,7 @@ public:
         return std::visit([](const auto& d) -> const Drive& { return d.program(); }, drive_);
     }
     const Drives& drivePart() const { return drive_; }  // the drive chosen (dynamics/Registry.hpp)
+    const Dampings& dampingParts() const { return dampings_; }  // the dampings (dynamics/Registry.hpp)
     std::int64_t clampedBars() const { return clamped_; }
     // Bars and nodes of the whole lattice (of all ranks' slabs under MPI).
     std::int64_t totalBars() const { return totalBars_; }

@@ -19,9 +19,12 @@ double AdaptiveDrive::steadyBound(const Limits& l, double peakStress) {
 AdaptiveDrive::Ramp AdaptiveDrive::rampAfterLoss(const Limits& l, double peakStress, double rampTime) {
     constexpr double pi = 3.14159265358979323846;
     const double Sd = steadyBound(l, peakStress), Sf = std::clamp(Sd / 2, 1.0, l.floor);
-    if (!std::isfinite(Sd) || !(Sf > 1)) return {Sf, rampTime};
-    // pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1))), D_f = dampingT / T; S_d >= 2 S_f > 2.
-    const double shortest = pi * (Sf - 1) * l.interval / (2 * l.dampingT * std::sqrt((Sd - Sf) * (Sd - 1)));
+    if (!(l.column > 0) || !(Sf > 1)) return {Sf, rampTime};
+    // pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1))), D_f = dampingT / T; S_d >= 2 S_f > 2. Without
+    // drag (D_f T = 0, S_d infinite): inertia alone, rho H v0 pi (S_f - 1) / (2 t_q) <= tail_drag peak.
+    const double shortest = std::isfinite(Sd)
+                                ? pi * (Sf - 1) * l.interval / (2 * l.dampingT * std::sqrt((Sd - Sf) * (Sd - 1)))
+                                : pi * (Sf - 1) * l.column * l.interval / (2 * l.drag * peakStress);
     return {Sf, std::max(rampTime, shortest)};
 }
 

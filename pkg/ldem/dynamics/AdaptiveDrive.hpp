@@ -49,6 +49,13 @@
 //   to 60 broke bars in the hanging cube and doubled U);
 // - never below S_f.
 // Undamped (zeta 0) the drive stays fixed (Registry.cpp: makeDrive).
+// With tail_damping relative (MassDamping.hpp) the damping acts, from the load
+// loss on, on v - vbar: a part that moves with the drive at a steady speed has
+// no drag, and D_f S leaves (1); a speed-up's mean lags by at most tau dv/dt, so
+//   rho H v0 (1 + D_f tau) dS/dt <= tail_drag x peak:
+// column carries the factor 1 + D_f tau and dampingT is 0 (S_d infinite: the
+// floor is loss_speedup, its ramp the shortest within inertia's bound, and
+// the record-wise bound S_1 <= S_0 + B).
 // Within a record interval of R steps the velocity ramps linearly from S_0
 // (the factor at the record) to S_1:
 //   v_k = v0 (S_0 + (S_1 - S_0)(k + 1)/R),   k = 0..R-1 the step in the interval,

@@ -72,6 +72,7 @@ public:
         return cd;
     }
     DashpotPass barPass(const Field3& v) { return on() ? DashpotPass{&d_, &v} : DashpotPass{}; }
+    void record(const DampingRecord&) {}
     // The work of bar layer m's dashpots in this step, whole (closing + opening), and its parts [J].
     double stepWork(int m) const { return on() ? d_.closing[m] + d_.opening[m] : 0.0; }
     double closingWork(int m) const { return on() ? d_.closing[m] : 0.0; }

@@ -3,8 +3,31 @@
 // mode (every mode i has 2 zeta_i omega_i = D_f). It enters the node update of
 // central differences (Integrator.hpp) through the coefficients a and b of
 // CentralDifference; its work is the integrator's. It adds no bar force.
-// Parameters: LDEM_MASS_DAMPING_PARAMETERS (zeta).
+// Parameters: LDEM_MASS_DAMPING_PARAMETERS (zeta, tail_damping, damping_filter_periods).
+//
+// tail_damping relative (issue 41 item 4): past its load loss a specimen's
+// upper part hangs from the drive and moves with it; -D_f m v drags it with
+// the drive's speed and breaks chains a quasi-static test would not. From the
+// record that finds the load loss on, the force is -D_f m (v - vbar), vbar
+// each node's velocity low-passed with the time constant
+// tau = damping_filter_periods x 2 pi/omega_1,
+//   vbar' = (v - vbar) / tau,   vbar = v at the switch.
+// A steady motion (vbar = v) is not dragged. For v = V e^{i omega t}, vbar =
+// V/(1 + i omega tau), so v - vbar = v i omega tau / (1 + i omega tau): the
+// part in phase with v, v (omega tau)^2 / (1 + (omega tau)^2), is damping of
+// ratio
+//   zeta(omega) = (D_f / (2 omega)) (omega tau)^2 / (1 + (omega tau)^2),
+// the absolute damping's ratio times (omega tau)^2 / (1 + (omega tau)^2):
+// at omega_1 with tau = 2 T_1, omega_1 tau = 4 pi, 0.9937; the part in
+// quadrature, -D_f m omega^2 tau / (1 + (omega tau)^2) x (a negative
+// stiffness), shifts omega^2 by D_f tau / (1 + (omega tau)^2) relative: 0.2 %
+// at omega_1 with zeta 0.02. During a speed-up of acceleration a the mean
+// lags v by at most a tau: the drag is at most D_f tau m a (AdaptiveDrive.hpp).
+// Before the load loss nothing changes, bit for bit. Its state: whether it
+// switched, and vbar of every node (node-local: a rank moves the vbar of the
+// nodes it advances; no halo reads it).
 #pragma once
+#include <stdexcept>
 #include <vector>
 
 #include "ldem/BarDashpot.hpp"
@@ -18,6 +41,12 @@ namespace ldem {
 // D_f = 2 zeta omega_1: damping ratio zeta on the fundamental mode.
 inline double massDampingCoefficient(double zeta, double omega1) { return 2.0 * zeta * omega1; }
 
+// The share of the damping ratio that relative damping keeps at omega (filter time tau).
+inline double relativeDampingShare(double omega, double tau) {
+    const double x = omega * tau;
+    return x * x / (1 + x * x);
+}
+
 class MassDamping {
 public:
     static constexpr const char* name = "mass";
@@ -25,23 +54,57 @@ public:
         LDEM_MASS_DAMPING_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     MassDamping() = default;  // none: D_f = 0
-    MassDamping(const Params& p, double omega1) : Df_(massDampingCoefficient(p.zeta, omega1)) {}
+    MassDamping(const Params& p, double omega1)
+        : Df_(massDampingCoefficient(p.zeta, omega1)), relative_(p.tailDampingRelative),
+          tau_(p.dampingFilterPeriods * 2 * 3.14159265358979323846 / omega1) {}
     // Every damping is built from the run's parameters and its set-up (Registry.hpp: makeDampings).
     MassDamping(const RunParams& run, const DampingSetup& s)
         : MassDamping(LDEM_PART_PARAMS(Params, LDEM_MASS_DAMPING_PARAMETERS, run), s.omega1) {}
     double coefficient() const { return Df_; }  // D_f [1/s]
+    bool relative() const { return relative_; }  // tail_damping relative
+    double filterTime() const { return tau_; }   // tau [s]
+    bool switched() const { return switched_; }  // relative from here on
     // Implicit in the node update (the mean of v(n-1/2) and v(n+1/2)): no bound on the time step.
     double stepFactor() const { return 1.0; }
-    CentralDifference nodeUpdate(const CentralDifference& cd) const { return CentralDifference(cd.dt, cd.Df + Df_); }
+    CentralDifference nodeUpdate(const CentralDifference& cd) {
+        CentralDifference out(cd.dt, cd.Df + Df_);
+        if (switched_) out.mean = &mean_, out.filter = cd.dt / tau_;
+        return out;
+    }
+    // At each record: from the load loss on (relative), vbar starts at v(n-1/2).
+    void record(const DampingRecord& r) {
+        if (relative_ && !switched_ && r.summary.loadLoss.reached()) switched_ = true, mean_ = r.v;
+    }
     DashpotPass barPass(const Field3&) const { return {}; }  // no bar forces
     double stepWork(int) const { return 0.0; }
     double closingWork(int) const { return 0.0; }
     double openingWork(int) const { return 0.0; }
-    std::vector<double> state() const { return {}; }
-    void setState(const std::vector<double>&) {}
+    // Absolute: none. Relative: whether it switched, then vbar (x, y, z of every node) once it did.
+    std::vector<double> state() const {
+        if (!relative_) return {};
+        std::vector<double> s{double(switched_)};
+        for (const std::vector<double>* c : {&mean_.x, &mean_.y, &mean_.z}) s.insert(s.end(), c->begin(), c->end());
+        return s;
+    }
+    void setState(const std::vector<double>& s) {
+        if (relative_ ? s.empty() || (s.size() - 1) % 3 != 0 : !s.empty())
+            throw std::invalid_argument("the checkpoint's mass damping is of another run (tail_damping)");
+        if (!relative_) return;
+        switched_ = s[0] != 0;
+        const std::size_t n = (s.size() - 1) / 3;
+        mean_ = Field3(std::int64_t(n));
+        for (int c = 0; c < 3; ++c) {
+            std::vector<double>& to = c == 0 ? mean_.x : c == 1 ? mean_.y : mean_.z;
+            to.assign(s.begin() + 1 + c * n, s.begin() + 1 + (c + 1) * n);
+        }
+    }
 
 private:
     double Df_ = 0;
+    bool relative_ = false;
+    double tau_ = 0;  // filter time [s]
+    bool switched_ = false;
+    Field3 mean_;  // vbar(n-1/2) of every node [m/s]
 };
 
 }  // namespace ldem

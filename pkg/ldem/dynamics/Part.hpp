@@ -21,10 +21,12 @@
 //   DashpotPass barPass(const Field3& v)   its bar forces in the force pass (BarDashpot.hpp), or none
 //   double stepWork(int m) const     the work its bar forces of bar layer m dissipated in this step [J]
 //   double closingWork(int m), openingWork(int m) const   that work's two halves (BarDashpot.hpp)
+//   void record(const DampingRecord&)  at each record, after the drive (Simulation then takes its node update anew)
 #pragma once
 #include <cstdint>
 #include <functional>
 
+#include "ldem/Field3.hpp"
 #include "ldem/dynamics/Record.hpp"
 
 namespace ldem {
@@ -49,6 +51,12 @@ struct DriveRecord {
     const RunSummary& summary;
     bool lossNow;  // the load is lost from this record on (summary.loadLoss is this record)
     double dt;
+};
+
+// A record, for the dampings: its events, and v(n-1/2) of every node.
+struct DampingRecord {
+    const RunSummary& summary;
+    const Field3& v;
 };
 
 // A record, for the stop rules.

@@ -46,11 +46,17 @@ Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSet
     if (load.tailDrive != TailDrive::Adaptive || !(Df > 0)) return fixed;
     const auto p = LDEM_PART_PARAMS(AdaptiveTailDrive::Params, LDEM_ADAPTIVE_DRIVE_PARAMETERS, load);
     // rho H v0 / T: the face stress of a unit change of S over a record, were a column of the
-    // specimen's height to follow the drive; D_f T its drag's share.
+    // specimen's height to follow the drive; D_f T its drag's share. Damped relative to
+    // the mean velocity (tail_damping relative, from the load loss on, as this bound) a
+    // steady motion has no drag: the bound is inertia's, m a, and the lag of the mean
+    // behind a speed-up, at most D_f tau m a (MassDamping.hpp): rho H v0 (1 + D_f tau) / T, D_f T = 0.
     const double T = s.recordEvery * s.dt;
+    const MassDamping& mass = std::get<MassDamping>(d);
+    const double column = m.rho * s.gaugeLength * fixed.program().v0 / T;
     const AdaptiveDrive::Limits limits{load.lossSpeedup, p.tailMaxSpeedup, p.tailLoad, p.tailDrag, p.tailStep,
-                                       s.splitWindow,    m.rho * s.gaugeLength * fixed.program().v0 / T,
-                                       Df * T,           T};
+                                       s.splitWindow,
+                                       mass.relative() ? column * (1 + Df * mass.filterTime()) : column,
+                                       mass.relative() ? 0.0 : Df * T, T};
     return AdaptiveTailDrive(fixed, limits);
 }
 

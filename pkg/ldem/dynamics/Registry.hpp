@@ -63,6 +63,11 @@ inline CentralDifference nodeUpdate(Dampings& d, double dt) {
     }, d);
 }
 
+// Every damping's record.
+inline void recordDampings(Dampings& d, const DampingRecord& r) {
+    std::apply([&](auto&... damping) { (damping.record(r), ...); }, d);
+}
+
 // The stable time step's factor of all the dampings together.
 inline double stepFactor(const Dampings& d) {
     return std::apply([](const auto&... damping) { return (1.0 * ... * damping.stepFactor()); }, d);
