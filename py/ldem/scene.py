@@ -6,6 +6,8 @@ import argparse
 import os
 import sys
 
+from .run_command import EXIT_BAD_INPUT, EXIT_FAILED
+
 
 def in_yade() -> bool:
     """True inside yade-double (its Python has the yade package loaded)."""
@@ -63,11 +65,11 @@ def exit_with(main, *args) -> None:
     gives 2; any other exception, a bug, prints its traceback and gives 1).
     Scripts run by `yade-double -x` end this way, because a plain sys.exit there
     can hang in YADE's shutdown or drop into its shell."""
-    code = 1
+    code = EXIT_FAILED
     try:
         code = main(*args) or 0
     except SystemExit as e:
-        code = e.code if isinstance(e.code, int) else 2
+        code = e.code if isinstance(e.code, int) else EXIT_BAD_INPUT
     except Exception as e:
         line = _input_error(e)
         if line is None:
@@ -75,7 +77,7 @@ def exit_with(main, *args) -> None:
             traceback.print_exc()
         else:
             print(f"{os.path.basename(sys.argv[0]) or 'scene'}: error: {line}", file=sys.stderr)
-            code = 2
+            code = EXIT_BAD_INPUT
     sys.stdout.flush()
     sys.stderr.flush()
     os._exit(code)

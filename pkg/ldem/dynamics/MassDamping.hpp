@@ -92,11 +92,8 @@ public:
         if (!relative_) return;
         switched_ = s[0] != 0;
         const std::size_t n = (s.size() - 1) / 3;
-        mean_ = Field3(std::int64_t(n));
-        for (int c = 0; c < 3; ++c) {
-            std::vector<double>& to = c == 0 ? mean_.x : c == 1 ? mean_.y : mean_.z;
-            to.assign(s.begin() + 1 + c * n, s.begin() + 1 + (c + 1) * n);
-        }
+        const auto from = [&](std::size_t c) { return s.begin() + std::ptrdiff_t(1 + c * n); };
+        mean_.x.assign(from(0), from(1)), mean_.y.assign(from(1), from(2)), mean_.z.assign(from(2), from(3));
     }
 
 private:
