@@ -94,7 +94,13 @@ def test_the_tables_and_figures_from_finished_cases(cases, cli):
     picture(cases / "size_effect.png")
 
 
-def test_a_folder_without_cases_is_one_clear_line(tmp_path, cli):
+def test_bad_input_is_one_line_before_anything_runs(tmp_path, cli):
+    for command in ("predict", "uniform"):
+        r = cli("study", "beams", command, "--out", str(tmp_path), "--eps-p", "0")
+        assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--eps-p must be positive (got 0.0" in r.stderr
+    r = cli("study", "beams", "predict", "--out", str(tmp_path), "--eps-p", "1e-4", "--seeds", "0")
+    assert r.returncode == 2 and "--seeds must be at least 1 (got 0)" in r.stderr
+    assert not (tmp_path / "cases").exists() and not (tmp_path / "cases_cv0").exists()
     r = cli("study", "beams", "size-effect", "--out", str(tmp_path))
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "no finished case" in r.stderr
     r = cli("study", "beams", "diagnose", "--out", str(tmp_path), "--factors", "cmod,nothing")

@@ -39,16 +39,23 @@ def log(s: str) -> None:
     print(s, flush=True)
 
 
+def eps_p(args) -> float:
+    if not args.eps_p > 0:
+        raise ValueError(f"--eps-p must be positive (got {args.eps_p}; ldem study beams calibrate finds it)")
+    return args.eps_p
+
+
 def predict(args) -> None:
     """Runs the cases not yet finished, then writes predictions.csv from all of them."""
     seeds = seed_count(args)
+    eps_p(args)
     if args.jobs > 0:
         run_beams(series_tests(args.eps_p, seeds), args.out, args.jobs)
     write_predictions(args.out, seeds)
 
 
 def uniform(args) -> None:
-    run_beams(uniform_tests(args.eps_p), args.out, args.jobs)
+    run_beams(uniform_tests(eps_p(args)), args.out, args.jobs)
 
 
 def curves(args) -> None:
