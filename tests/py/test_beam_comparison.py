@@ -1,16 +1,15 @@
 """The comparison of the blind prediction of Grégoire et al. (2013) with the
-measurements (issue 28 item 1): `scripts/gregoire2013.py compare` on the shared
+measurements (issue 28 item 1): `ldem study beams compare` on the shared
 data (../shared/data/gregoire2013) and the committed prediction
 (results/beams/gregoire2013), into a temporary folder."""
 import csv
 import os
 import shutil
-import subprocess
 
 import numpy as np
 import pytest
 
-from conftest import ROOT, picture, subprocess_env
+from conftest import ROOT, picture
 from ldem.study import beam_comparison
 
 DATA = os.path.join(ROOT, "..", "shared", "data", "gregoire2013")
@@ -32,10 +31,8 @@ def prediction(tmp_path):
 
 @pytest.mark.skipif(not os.path.isdir(DATA), reason=f"{DATA} absent: the measurements of Grégoire et al. "
                                                     "(2013) are not on this machine")
-def test_the_comparison_on_the_shared_data(prediction):
-    r = subprocess.run(["/usr/bin/python3", os.path.join(ROOT, "scripts", "gregoire2013.py"), "compare",
-                        "--out", str(prediction), "--data", DATA], capture_output=True, text=True,
-                       env=subprocess_env(), timeout=300)
+def test_the_comparison_on_the_shared_data(prediction, cli):
+    r = cli("study", "beams", "compare", "--out", str(prediction), "--data", DATA)
     assert r.returncode == 0, r.stderr
     lines = [x for x in (prediction / "comparison.md").read_text().splitlines() if x.startswith("| D = ")]
     cells = [[c.strip() for c in x.split("|")[1:-1]] for x in lines]
@@ -69,7 +66,7 @@ def test_missing_measurements_are_one_clear_line(prediction, cli):
     nowhere.mkdir()
     with pytest.raises(FileNotFoundError, match="measured.csv not found"):
         beam_comparison.compare(str(prediction), str(nowhere))
-    r = cli("study", "beams", "--out", str(prediction), "--compare", str(nowhere))
+    r = cli("study", "beams", "compare", "--out", str(prediction), "--data", str(nowhere))
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "measured.csv not found" in r.stderr
     assert not (prediction / "comparison.md").exists()
 

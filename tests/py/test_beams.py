@@ -1,5 +1,5 @@
 """The notched-beam series (issue 13 items 5 and 6): the beams of the study
-ldem.study.beams (scripts/gregoire2013.py) are the paper's geometry, and its
+ldem.study.beams (`ldem study beams`) are the paper's geometry, and its
 tables recover Bažant's law from points that follow it."""
 import numpy as np
 import pytest

@@ -3,6 +3,7 @@ a topic). Every link resolves, and every command shown in a shell block is run:
 here, on the build tree, or by the test named for it; a synopsis (options in
 [brackets]) has each of its options in its command's --help."""
 import glob
+import itertools
 import json
 import os
 import re
@@ -81,7 +82,7 @@ def test_every_command_is_accounted_for():
 @pytest.mark.parametrize("command", [c for c in COMMANDS if c.startswith("ldem ") and "[" in c])
 def test_synopsis_options_are_the_commands(command):
     words = command.split()
-    sub = [w for w in words[1:] if not w.startswith("-") and not w.startswith("[")][:2]
+    sub = list(itertools.takewhile(lambda w: not w.startswith(("-", "[")), words[1:]))  # with a sub-command's
     r = run_cli(*sub, "--help")
     assert r.returncode == 0, r.stderr
     for option in re.findall(r"(--[\w-]+)", command):

@@ -9,6 +9,7 @@ processes or on a dask.distributed cluster, resumable, aggregated into tables
     ldem study mesh        --out DIR [--sizes 0.48,0.72,0.96] [--modules 0.04,0.06,0.08,0.12] [--reference DIR]
     ldem study refinement  --out DIR [--sizes 0.12,0.24] [--L0s 0.02,0.01] [--corr-lengths 0,0.02]
     ldem study ablation    --out DIR [--size 0.48] [--seeds 3]     (or --table RUNS.jsonl)
+    ldem study beams       COMMAND ...   (calibrate, predict --eps-p E, curves, compare, size-effect, ...)
     ldem study validation  NAME [--seeds 6] [--calibrate-only]
     ldem study calibration --E --nu --ft --L0 (--fc | --GF) [--out material.json]
 
@@ -35,7 +36,9 @@ Modules, each importing only those listed before it:
   beams        the Gregoire et al. (2013) beams: specimens, calibration, runs, predictions.csv
   beam_tables  their size effect (Bazant's law fitted per notch) and curve tables
   beam_comparison  the prediction against the measurements
-  beam_report  their figures, and `ldem study beams` (scripts/gregoire2013.py has the rest)
+  beam_diagnosis  one factor at a time against the prediction
+  beam_report  their figures
+  beam_command  `ldem study beams`: calibrate, predict, uniform, curves, compare, size-effect, diagnose, calibrated
   validation   blind predictions of specimen files with the calibrated concrete
   command      the `ldem study` command line, from the registry
 """
@@ -48,7 +51,7 @@ from .damping import run_damping  # noqa: F401
 from . import mesh, mesh_tables, refinement  # noqa: F401
 # Each study registers itself as its module is imported (size_effect, damping, mesh, refinement above):
 # this order is `ldem study`'s.
-from . import concrete, beam_report, ablation, validation  # noqa: F401
+from . import concrete, beam_command, ablation, validation  # noqa: F401
 from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
                      fit_fractal, fractal_fits, mean_cv)
 from ..curves import mean_curve, mean_curve_peak  # noqa: F401

@@ -151,7 +151,7 @@ def report(rows: List[dict]) -> str:
         "The prediction (`predictions.csv`, `curves/`, committed before the measurements were given and "
         "unchanged since) against the measured beams of `../shared/data/gregoire2013/` (its README.md: "
         "provenance and caveats). Only three of the nine beams have public measurements. Written by "
-        "`scripts/gregoire2013.py compare` (`ldem study beams --out DIR --compare [DATA]`).", "",
+        "`ldem study beams compare [--out DIR] [--data DATA]`.", "",
         *table_lines(rows), "",
         "![prediction against measurement](comparison.png)", "",
         f"The prediction is too strong for every measured beam, by {min(r['difference_pct'] for r in rows):+.0f} "

@@ -28,7 +28,7 @@ from .tables import mean_cv
 
 BEAMS = ((0.05, 0.0), (0.05, 0.5), (0.1, 0.2))
 MEASURED_KN = {(0.05, 0.0): 4.649, (0.05, 0.5): 0.979, (0.1, 0.2): 4.496}  # ../shared/data/gregoire2013/measured.csv
-PREDICTION_EPS_P = 1.01592e-4  # scripts/gregoire2013.py calibrate (results/beams/gregoire2013/README.md)
+PREDICTION_EPS_P = 1.01592e-4  # ldem study beams calibrate (results/beams/gregoire2013/README.md)
 # Bažant and Becq-Giraudon, Cem. Concr. Res. 32 (2002) 529: G_F / G_f = 2.5 on
 # average over their database (CV 0.4); fib MC2010's bilinear law has 0.625 G_F
 # under its initial line.

@@ -1,7 +1,6 @@
 """The beams' figures (reads the tables of ldem.study.beam_tables and the cases'
-pictures; computes nothing) and the study's command line, `ldem study beams`
-(the runs, predictions.csv, the curve tables, the size effect and these
-figures). Their comparison with the measurements is ldem.study.beam_comparison."""
+pictures; computes nothing). Their comparison with the measurements is
+ldem.study.beam_comparison; the command line, ldem.study.beam_command."""
 from __future__ import annotations
 
 import glob
@@ -10,11 +9,7 @@ import re
 
 import numpy as np
 
-from .options import add_seeds, parameter_option, seed_count
-from .beam_comparison import compare as compare_beams
-from .beam_tables import write_curve_tables, write_size_effect
-from .beams import DEPTHS, FT, NOTCHES, run_beams, series_tests, uniform_tests, write_predictions
-from .registry import Study, register
+from .beams import DEPTHS, FT, NOTCHES
 
 
 def curves_figure(out: str, found: dict) -> None:
@@ -81,45 +76,3 @@ def cracks_mosaic(folder) -> None:
     fig.savefig(os.path.join(folder, "cracks.png"), dpi=100)
     plt.close(fig)
 
-
-
-def add_arguments(b) -> None:
-    b.add_argument("--out", required=True, metavar="DIR", help="study folder (cases/, tables, figures)")
-    parameter_option(b, "eps_p", "--eps-p", "; the calibration's (required to run)", default=None)
-    add_seeds(b, "beam")
-    b.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once, one thread each")
-    b.add_argument("--uniform", action="store_true", help="the beams with a uniform G_f (cases_cv0/) instead")
-    b.add_argument("--compare", nargs="?", const="", default=None, metavar="DATA",
-                   help="run nothing: compare DIR's prediction with the measurements in DATA (default "
-                        "../shared/data/gregoire2013 beside the repository holding DIR): comparison.md|png")
-
-
-def cmd_beams(args) -> int:
-    """The Gregoire et al. (2013) beams (ldem.study.beams): the unfinished cases,
-    then predictions.csv, the curve tables and the size effect; with --compare,
-    only the comparison of the committed prediction with the measurements."""
-    if args.compare is not None:
-        try:
-            rows = compare_beams(args.out, args.compare or None)
-        except FileNotFoundError as e:
-            raise ValueError(str(e)) from None
-        for r in rows:
-            print(f"  D = {r['D_mm']:g} mm, notch {r['notch']:g} D: predicted {r['predicted_kN']:.3f} kN, "
-                  f"measured {r['measured_kN']:.3f} kN ({r['difference_pct']:+.1f} %)")
-        print(f"wrote {args.out}/comparison.md and comparison.png")
-        return 0
-    if args.eps_p is None or not (args.eps_p > 0):
-        raise ValueError(f"--eps-p must be positive (got {args.eps_p}; scripts/gregoire2013.py calibrate finds it)")
-    tests = uniform_tests(args.eps_p) if args.uniform else series_tests(args.eps_p, seed_count(args))
-    run_beams(tests, args.out, args.jobs)
-    write_predictions(args.out, args.seeds)
-    curves_figure(args.out, write_curve_tables(args.out, args.seeds))
-    found = write_size_effect(args.out)
-    if found is not None:
-        size_effect_figure(args.out, *found[1:])
-        cracks_mosaic(args.out)
-    return 0
-
-
-register(Study("beams", "the notched beams of Gregoire et al. (2013): runs, predictions, size effect",
-               add_arguments, cmd_beams))

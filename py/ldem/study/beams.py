@@ -1,11 +1,30 @@
 """The beam series of Grégoire, Rojas-Solano and Pijaudier-Cabot (2013),
-"Failure and size effect for notched and unnotched concrete beams", as a
-study (scripts/gregoire2013.py calls it; its docstring has the why of each
-choice): geometrically similar beams in three-point bending, depth D = 50,
-100 and 200 mm, span 2.5 D, length 3.5 D, thickness 50 mm, notches 0, D/5
-and D/2, six random specimens each, the material taken from the paper's
-concrete (E = 37 GPa, nu = 0.21, f_t = 3.9 MPa, f_c = 42.3 MPa) and G_f from
-fib Model Code 2010, eps_p calibrated on a direct tension prism.
+"Failure and size effect for notched and unnotched concrete beams" (issue 13
+item 6), as a study (`ldem study beams`: ldem.study.beam_command): a blind
+prediction of geometrically similar beams in three-point bending, depth D =
+50, 100 and 200 mm, span 2.5 D, length 3.5 D, thickness 50 mm, notches 0, D/5
+and D/2, six random specimens each, with the material taken only from the
+properties the paper gives for its concrete (E = 37 GPa, nu = 0.21, f_t =
+3.9 MPa, f_c = 42.3 MPa), never from the beams' measured loads.
+
+The material, and why:
+- E, nu: the paper's. The lattice is exactly isotropic at nu = 0.25 only; at
+  0.21 the Nayfeh-Hefzy areas give E and nu to within a few per cent.
+- G_f: the paper does not give it. fib Model Code 2010 (eq. 5.1-9):
+  G_F = 73 f_cm^0.18 N/m = 143 N/m for f_cm = 42.3 MPa. CV(G_f) = 1 and
+  c_a = 0.1385: the study's (LDEM_SPEC section 6), not fitted.
+- eps_p: from a direct tension prism of the same concrete (50 x 50 x 100 mm,
+  lower face fixed, upper face pulled, the study's cube test on a prism, three
+  seeds): eps_p such that its mean strength is f_t = 3.9 MPa. One scaling from
+  f_t / E, then checked (calibrate).
+- L0 = 5 mm (D = 50 mm: 10 modules deep; the notches D/5 and D/2 are whole
+  modules), the notch one module wide (5 mm, a saw cut's order, the same at
+  every size) at mid-span, supports one node line, the loading platen one
+  module wide, lateral DOFs of the left support held (a pin), of the right one
+  free (a roller).
+- Deflection rate 0.1 D per second, zeta 0.02 as in the study; a run stops once
+  the deflection is twice that at the peak and the load below half the peak
+  (PastThePeak), or at a deflection of 3e-3 D.
 
 Cases: OUT/cases/D{mm}_n{notch}_s{seed}/ (random G_f), OUT/cases_cv0/ (uniform
 G_f); tables: predictions.csv here, the size effect in beam_tables."""

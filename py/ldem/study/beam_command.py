@@ -1,0 +1,180 @@
+"""`ldem study beams`: the Grégoire et al. (2013) beams (ldem.study.beams has
+the why of each choice), one sub-command per step, each in the study folder
+OUT (default results/beams/gregoire2013, from where it is run):
+
+    ldem study beams calibrate                                      eps_p on the tension prism
+    ldem study beams predict --eps-p E [--out OUT] [--seeds 6] [--jobs J]   cases/, predictions.csv
+    ldem study beams uniform --eps-p E [--out OUT] [--jobs J]       G_f CV 0: cases_cv0/
+    ldem study beams curves [--out OUT] [--seeds 6]                 curves/*.csv, curves.png
+    ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (beam_comparison)
+    ldem study beams size-effect [--out OUT]                        size_effect.md|csv|png, cracks.png
+    ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
+    ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
+
+Cases are resumed and run side by side as every study's (J at a time, one
+thread each); a finished case is not run again."""
+from __future__ import annotations
+
+import json
+import os
+
+from .beam_comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
+from .beam_diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
+from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
+from .beam_tables import write_curve_tables, write_size_effect
+from .beams import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
+                    series_tests, uniform_tests, write_predictions)
+from .concrete import calibrate as calibrate_concrete
+from .options import add_seeds, parameter_option, parse_names, seed_count
+from .registry import Study, register
+
+OUT = os.path.join("results", "beams", "gregoire2013")
+CALIBRATED_NOTE = ("The nine beams with the concrete of the calibration procedure (docs/calibration.md: "
+                   "bilinear law, G_f = 0.4 G_F, E and f_t from the virtual prism), **after the diagnosis, not "
+                   "blind**: the procedure was written after the blind prediction was compared with these "
+                   "measurements. Written by `ldem study beams calibrated`.")
+
+
+def log(s: str) -> None:
+    print(s, flush=True)
+
+
+def eps_p(args) -> float:
+    if not args.eps_p > 0:
+        raise ValueError(f"--eps-p must be positive (got {args.eps_p}; ldem study beams calibrate finds it)")
+    return args.eps_p
+
+
+def predict(args) -> None:
+    """Runs the cases not yet finished, then writes predictions.csv from all of them."""
+    seeds = seed_count(args)
+    eps_p(args)
+    if args.jobs > 0:
+        run_beams(series_tests(args.eps_p, seeds), args.out, args.jobs)
+    write_predictions(args.out, seeds)
+
+
+def uniform(args) -> None:
+    run_beams(uniform_tests(eps_p(args)), args.out, args.jobs)
+
+
+def curves(args) -> None:
+    curves_figure(args.out, write_curve_tables(args.out, seed_count(args)))
+
+
+def compare(args) -> None:
+    try:
+        rows = compare_beams(args.out, args.data)
+    except FileNotFoundError as e:
+        raise ValueError(str(e)) from None
+    for r in rows:
+        print(f"  D = {r['D_mm']:g} mm, notch {r['notch']:g} D: predicted {r['predicted_kN']:.3f} kN, "
+              f"measured {r['measured_kN']:.3f} kN ({r['difference_pct']:+.1f} %)")
+    print(f"wrote {args.out}/comparison.md and comparison.png")
+
+
+def size_effect(args) -> None:
+    found = write_size_effect(args.out)
+    if found is None:
+        raise ValueError(f"{args.out}: no finished case")
+    lines, *fits = found
+    size_effect_figure(args.out, *fits)
+    cracks_mosaic(args.out)
+    print("\n".join(lines))
+
+
+def diagnose(args) -> None:
+    names = parse_names(args.factors, BY_NAME, "factor", ", ".join(BY_NAME))
+    rows = run_diagnosis(os.path.join(args.out, "diagnosis"), names, seed_count(args), args.jobs, log)
+    print("\n".join(diagnosis_markdown(rows)))
+
+
+def calibrated(args) -> None:
+    """The procedure's material (OUT/material.json), the beams with it (D50 and
+    D100 with --seeds, D200 with --seeds-200), their table and comparison."""
+    out, seeds = args.out, max(seed_count(args), args.seeds_200)
+    path = os.path.join(out, "material.json")
+    if not os.path.exists(path):
+        result = calibrate_concrete(E, NU, FT, FC, L0=L0, log=print)
+        os.makedirs(out, exist_ok=True)
+        with open(path, "w") as f:
+            json.dump(result, f, indent=1)
+    with open(path) as f:
+        m = json.load(f)["material"]
+    v = calibrated_variant(m)
+    tests = series_tests(m["eps_p"], args.seeds, v, DEPTHS[:2])
+    tests += series_tests(m["eps_p"], args.seeds_200, v, DEPTHS[2:])
+    run_beams(tests, out, args.jobs)
+    write_predictions(out, seeds)
+    curves_figure(out, write_curve_tables(out, seeds))
+    data = args.data or default_data(out)
+    rows = comparison_rows(out, data)
+    comparison_figure(out, data, rows, "the calibrated concrete, after the diagnosis, not blind")
+    text = "\n".join(["# Grégoire et al. (2013) with the calibrated concrete", "", CALIBRATED_NOTE, "",
+                      *table_lines(rows), "",
+                      "![calibrated concrete against the measurements](comparison.png)", ""])
+    with open(os.path.join(out, "comparison.md"), "w") as f:
+        f.write(text)
+    print(text)
+
+
+def _jobs(p, note: str = "") -> None:
+    p.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each" + note)
+
+
+def _data(p) -> None:
+    p.add_argument("--data", default=None, metavar="DIR",
+                   help="the measurements (measured.csv, D50_*_load_cmod.csv; default ../shared/data/gregoire2013 "
+                        "beside the repository holding OUT)")
+
+
+def add_arguments(b) -> None:
+    sub = b.add_subparsers(dest="beams_command", metavar="COMMAND", required=True)
+
+    def command(name, run, line, out=OUT):
+        p = sub.add_parser(name, help=line, description=line, formatter_class=b.formatter_class)
+        p.set_defaults(beams_run=run)
+        if out:
+            p.add_argument("--out", default=out, metavar="OUT", help="the study folder")
+        return p
+
+    command("calibrate", lambda a: calibrate_eps_p(log), "eps_p such that the tension prisms' mean strength "
+            "is f_t (seeds 1-3): the value predict and uniform take", out="")
+    p = command("predict", predict, "the beams with random G_f, six specimens each (OUT/cases/), then "
+                                    "predictions.csv")
+    u = command("uniform", uniform, "the beams with a uniform G_f (CV 0, one specimen each: OUT/cases_cv0/)")
+    for q in (p, u):
+        parameter_option(q, "eps_p", "--eps-p", "; `ldem study beams calibrate` finds it", required=True,
+                         default=None)
+    add_seeds(p, "beam")
+    _jobs(p, " (0: only the table, from the cases finished)")
+    _jobs(u)
+    add_seeds(command("curves", curves, "curves/D{mm}_n{notch}.csv and curves.png from the finished cases"), "beam")
+    _data(command("compare", compare, "runs nothing: the prediction in OUT against the measurements: "
+                                      "comparison.md|png"))
+    command("size-effect", size_effect, "Bažant's law fitted per notch, the unnotched slope, the uniform-G_f "
+                                        "beams beside them: size_effect.md|csv|png, cracks.png")
+    g = command("diagnose", diagnose, "one factor at a time against the prediction (issue 28): OUT/diagnosis/")
+    g.add_argument("--factors", default=",".join(f.name for f in FACTORS),
+                   help="comma-separated, of: " + ", ".join(f.name for f in FACTORS))
+    add_seeds(g, "beam")
+    _jobs(g)
+    q = command("calibrated", calibrated, "the nine beams with the calibration procedure's concrete (issue 28): "
+                                          "OUT/calibrated/", os.path.join(OUT, "calibrated"))
+    q.add_argument("--seeds", type=int, default=6, help="specimens of the D = 50 and 100 mm beams")
+    q.add_argument("--seeds-200", type=int, default=2, help="specimens of the D = 200 mm beams")
+    _jobs(q)
+    _data(q)
+
+
+def cmd_beams(args) -> int:
+    args.beams_run(args)
+    return 0
+
+
+register(Study("beams", "the notched beams of Gregoire et al. (2013): calibration, runs, predictions, size effect, "
+                        "comparison, diagnosis", add_arguments, cmd_beams,
+               "The notched beams of Gregoire et al. (2013), one sub-command per step, in the study folder OUT "
+               f"(default {OUT}): calibrate finds eps_p; predict and uniform run the beams; curves, size-effect "
+               "and compare write tables and figures from the finished cases; diagnose and calibrated run the "
+               "series of issue 28. `ldem study beams COMMAND --help` says more of each."))
