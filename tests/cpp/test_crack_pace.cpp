@@ -13,10 +13,11 @@ CrackPace::Limits limits() { return {0.0625, 1e-3, 1e-7, 1.1}; }  // brake 1e-7 
 
 TEST(CrackPace, SlowsOnlyWhileTheLatticeMovesByItselfAndTheLoadIsNotLost) {
     const CrackPace::Limits l = limits();
-    EXPECT_EQ(CrackPace::target(l, 0.9e-3, 1.0, false), 1.0);     // K/W below crack_kinetic: led by the drive
-    EXPECT_EQ(CrackPace::target(l, 1.1e-3, 1.0, false), 0.0625);  // above: a crack runs
-    EXPECT_EQ(CrackPace::target(l, 1.1e-3, 1.0, true), 1.0);      // the load lost: the tail's
-    EXPECT_EQ(CrackPace::target(l, 0.0, 0.0, false), 1.0);        // at rest
+    EXPECT_EQ(CrackPace::target(l, 0.9e-3, 1.0, true, false), 1.0);     // K/W below crack_kinetic: led by the drive
+    EXPECT_EQ(CrackPace::target(l, 1.1e-3, 1.0, true, false), 0.0625);  // above while bars soften: a crack runs
+    EXPECT_EQ(CrackPace::target(l, 1.1e-3, 1.0, false, false), 1.0);    // no bar softens: the start's own motion
+    EXPECT_EQ(CrackPace::target(l, 1.1e-3, 1.0, true, true), 1.0);      // the load lost: the tail's
+    EXPECT_EQ(CrackPace::target(l, 0.0, 0.0, false, false), 1.0);       // at rest
 }
 
 TEST(CrackPace, BrakesWithinTheInertiaBudgetAndReleasesByTheRatio) {
@@ -37,7 +38,7 @@ TEST(CrackPace, TheClockIntegratesTheRampedPace) {
     CrackPace p(limits());
     const double dt = 1e-6, peak = 2e6;
     const int R = 40;
-    p.record(0.01, 1.0, false, peak);  // brake: P from 1 to 0.8
+    p.record(0.01, 1.0, 0.1, false, peak);  // brake: P from 1 to 0.8
     for (int k = 0; k < R; ++k) p.advance(dt, k, R);
     EXPECT_NEAR(p.tau, dt * (R * 1.0 + (0.8 - 1.0) * (R + 1) / 2.0), 1e-18);
     EXPECT_NEAR(p.tau - p.tauBefore, dt * 0.8, 1e-20);  // the last step at P_1
@@ -50,12 +51,12 @@ TEST(CrackPace, OffAtOneAndItsStateRoundTrips) {
     EXPECT_FALSE(CrackPace(l).on());
     CrackPace a(limits()), b(limits());
     for (int k = 0; k < 5; ++k) {
-        a.record(k % 2 ? 0.01 : 0.0, 1.0, false, 2e6);
+        a.record(k % 2 ? 0.01 : 0.0, 1.0, 0.1 * k, false, 2e6);
         for (int j = 0; j < 10; ++j) a.advance(1e-6, j, 10);
     }
     b.setState(a.state());
     for (int k = 0; k < 5; ++k) {
-        a.record(0.0, 1.0, false, 2e6), b.record(0.0, 1.0, false, 2e6);
+        a.record(0.01, 1.0, 0.5 + 0.1 * k, false, 2e6), b.record(0.01, 1.0, 0.5 + 0.1 * k, false, 2e6);
         for (int j = 0; j < 10; ++j) a.advance(1e-6, j, 10), b.advance(1e-6, j, 10);
         EXPECT_EQ(a.tau, b.tau);
         EXPECT_EQ(a.pace(), b.pace());

@@ -68,12 +68,13 @@ def test_a_checkpoint_past_the_load_loss_restarts_on_the_same_bits(runs):
     first = test.simulation()
     first.run(lambda p: p.step < stop)
     state = first.checkpoint()
-    # the ramp's start, floor and time, the pace's clock (tau, tau before) and pace (P_0, P_1), then the adaptive drive's
+    # the ramp's start, floor and time, the pace's clock (tau, tau before), pace (P_0, P_1) and U_f, then the
+    # adaptive drive's
     drive = np.asarray(state["part_drive_adaptive"])
-    assert drive.size == 15 and drive[7] == 1.0  # active, its state stored
+    assert drive.size == 16 and drive[8] == 1.0  # active, its state stored
     assert drive[5] == drive[6] == 1.0  # the pace is back at 1 past the load loss
     assert drive[1] == 20.0  # the floor: the bound leaves the 0.08 m cube the fixed drive's ramp
-    assert drive[10] > 20.0 and drive[11] > 20.0  # S_0, S_1: faster than the fixed drive there
+    assert drive[11] > 20.0 and drive[12] > 20.0  # S_0, S_1: faster than the fixed drive there
     second = test.simulation()
     second.restore(state)
     rest = []
