@@ -39,9 +39,12 @@ def tail_drive_words(p: dict) -> str:
     before tail_drive was declared ran the fixed drive)."""
     if p.get("tail_drive", "fixed") == "fixed":
         return ""
+    pace = p.get("crack_pace", 1.0)  # runs before the pace was declared ran without it
+    before = (f"; before the load loss at {pace:g} of the rate while cracks run and K/W > {p['crack_kinetic']:g}"
+              if pace < 1 else "")
     return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
-            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}; "
-            "docs/cube.md)")
+            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}"
+            f"{before}; docs/cube.md)")
 
 
 def cost_section(case_rows) -> list:

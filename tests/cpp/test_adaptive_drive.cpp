@@ -215,10 +215,12 @@ struct CubeRun {
     std::vector<CurvePoint> rows;
 };
 
-CubeRun runCube(TailDrive drive, std::int64_t seed = 2) {
+// crackPace 1: the tail alone (the pace before the load loss: test_crack_pace.cpp).
+CubeRun runCube(TailDrive drive, std::int64_t seed = 2, double crackPace = 1) {
     Material m;
     LoadingParams lp;
     lp.tailDrive = drive;
+    lp.crackPace = crackPace;
     RunParams rp;
     rp.threads = 1, rp.seed = seed;
     Simulation sim(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
@@ -261,10 +263,10 @@ TEST(AdaptiveDriveRun, SameBitsToTheLoadLossThenFewerStepsToTheSameU) {
 // stopped: the drive's U, U(n-1), its factors and averages are in the checkpoint.
 TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     Material m;
-    LoadingParams lp;
+    LoadingParams lp;  // the default drive, its pace on
     RunParams rp;
     rp.threads = 1, rp.seed = 2;
-    const CubeRun whole = runCube(TailDrive::Adaptive);
+    const CubeRun whole = runCube(TailDrive::Adaptive, 2, lp.crackPace);
     Simulation first(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     int after = 0;
     const AdaptiveDrive& tail = std::get<ldem::AdaptiveTailDrive>(first.drivePart()).adaptive();
@@ -275,7 +277,8 @@ TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     ASSERT_TRUE(tail.active());
     const Checkpoint c = first.checkpoint();
     ASSERT_EQ(c.parts.front().first, "drive_adaptive");
-    ASSERT_EQ(c.parts.front().second.size(), 3 + tail.state().size());  // the ramp's start, floor and time, then the adaptive drive's
+    // the ramp's start, floor and time, the pace's state, then the adaptive drive's
+    ASSERT_EQ(c.parts.front().second.size(), 3 + CrackPace::kStateSize + tail.state().size());
     Simulation second(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     second.restore(c);
     std::vector<CurvePoint> rest;

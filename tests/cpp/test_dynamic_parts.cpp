@@ -90,6 +90,20 @@ TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
     EXPECT_EQ(started.state().size(), 11u);  // the ramp's start, floor and time, then the adaptive drive's 8
 }
 
+// recordAt's K/W runs from 1e-2 to 3e-3: at crack_kinetic 5e-3 the pace brakes and releases.
+TEST(DynamicParts, TheAdaptiveDriveRoundTripsItsPace) {
+    const CrackPace::Limits pace{0.0625, 5e-3, 1e-7, 1.1};
+    const AdaptiveTailDrive d(fixedDrive(), limits(), pace);
+    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits(), pace), 3);   // braking, before the loss
+    driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits(), pace), 12);  // the tail started
+    AdaptiveTailDrive paced(fixedDrive(), limits(), pace);
+    RunSummary s;
+    s.peakStress = 2e6;
+    for (int k = 0; k < 3; ++k) paced.record(DriveRecord{recordAt(k), s, false, kDt});
+    EXPECT_LT(paced.pace().pace(), 1.0);
+    EXPECT_EQ(paced.state().size(), 3u + CrackPace::kStateSize);  // the ramp's 3, then the pace's
+}
+
 TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {
     ServoDrive::Params p;
     p.openingRate = 1e-3;

@@ -59,20 +59,25 @@ void AdaptiveDrive::setState(const std::vector<double>& s) {
 
 void AdaptiveTailDrive::record(const DriveRecord& r) {
     const CurvePoint& p = r.point;
+    const double t = clock(p.time);
     if (r.lossNow) {
         const AdaptiveDrive::Ramp ramp = AdaptiveDrive::rampAfterLoss(lim_, r.summary.peakStress, program().rampTime);
-        fixed_.speedUp(p.time, ramp.floor, ramp.time);
+        fixed_.speedUp(t, ramp.floor, ramp.time);
     }
-    if (!tail_.active() && r.summary.loadLoss.reached() && p.time >= program().speedupStart + program().speedupRamp) {
+    if (!tail_.active() && r.summary.loadLoss.reached() && t >= program().speedupStart + program().speedupRamp) {
         tail_ = atFloor();
         tail_.start(now(p.time, r.dt), before(p.time, r.dt), p.fracture);
     }
     if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, r.summary.peakStress);
+    else if (pace_.on()) pace_.record(p.kinetic, p.externalWork, p.fracture, r.summary.loadLoss.reached(),
+                                      r.summary.peakStress);
 }
 
 std::vector<double> AdaptiveTailDrive::state() const {
     const Drive& d = program();
     std::vector<double> s{d.speedupStart, d.speedup, d.speedupRamp};
+    if (pace_.on())
+        for (double x : pace_.state()) s.push_back(x);
     if (tail_.active())
         for (double x : tail_.state()) s.push_back(x);
     return s;
@@ -80,8 +85,10 @@ std::vector<double> AdaptiveTailDrive::state() const {
 
 void AdaptiveTailDrive::setState(const std::vector<double>& s) {
     fixed_.speedUp(s.at(0), s.at(1), s.at(2));
+    auto rest = s.begin() + 3;
+    if (pace_.on()) pace_.setState({rest, rest + CrackPace::kStateSize}), rest += CrackPace::kStateSize;
     tail_ = AdaptiveDrive(lim_);
-    if (s.size() > 3) tail_ = atFloor(), tail_.setState({s.begin() + 3, s.end()});
+    if (rest != s.end()) tail_ = atFloor(), tail_.setState({rest, s.end()});
 }
 
 }  // namespace ldem

@@ -1,6 +1,7 @@
 // The adaptive drive after the load loss (tail_drive adaptive): the engine
-// (AdaptiveDrive) and the drive part that uses it (AdaptiveTailDrive).
-// Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step);
+// (AdaptiveDrive) and the drive part that uses it (AdaptiveTailDrive), which
+// before the load loss slows while the cracks run (CrackPace.hpp).
+// Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step, crack_pace);
 // loss_speedup caps its floor.
 //
 // Between the load loss and separation the specimen is mostly chains straightening; what
@@ -66,6 +67,7 @@
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/ConstantRateDrive.hpp"
+#include "ldem/dynamics/CrackPace.hpp"
 #include "ldem/dynamics/Part.hpp"
 
 namespace ldem {
@@ -120,26 +122,39 @@ private:
     double support_ = 0;      // average of s_support [Pa]
 };
 
-// The drive part: the fixed drive's program (the same bits until the load
-// loss), from there its ramp to the floor (rampAfterLoss), then the adaptive drive.
+// The drive part: the fixed drive's program on the pace's clock until the load
+// loss (CrackPace.hpp; crack_pace 1: the fixed drive, bit for bit), from there
+// its ramp to the floor (rampAfterLoss), then the adaptive drive.
 class AdaptiveTailDrive {
 public:
     static constexpr const char* name = "adaptive";
     struct Params {
         LDEM_ADAPTIVE_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
-    AdaptiveTailDrive(const ConstantRateDrive& fixed, const AdaptiveDrive::Limits& l) : fixed_(fixed), tail_(l), lim_(l) {}
-    double now(double t, double dt) const { return tail_.active() ? tail_.U : fixed_.now(t, dt); }
-    double before(double t, double dt) const { return tail_.active() ? tail_.Uprev : fixed_.before(t, dt); }
+    AdaptiveTailDrive(const ConstantRateDrive& fixed, const AdaptiveDrive::Limits& l, const CrackPace::Limits& pace = {})
+        : fixed_(fixed), tail_(l), lim_(l), pace_(pace) {}
+    double now(double t, double dt) const {
+        if (tail_.active()) return tail_.U;
+        return pace_.on() ? program().displacement(pace_.tau) : fixed_.now(t, dt);
+    }
+    double before(double t, double dt) const {
+        if (tail_.active()) return tail_.Uprev;
+        return pace_.on() ? program().displacement(pace_.tauBefore) : fixed_.before(t, dt);
+    }
     double next(const DriveStep& c) {
-        if (!tail_.active()) return fixed_.next(c);
-        tail_.advance(c.dt, fixed_.program().v0, c.k, c.R);
-        return tail_.U;
+        if (tail_.active()) {
+            tail_.advance(c.dt, fixed_.program().v0, c.k, c.R);
+            return tail_.U;
+        }
+        if (!pace_.on()) return fixed_.next(c);
+        pace_.advance(c.dt, c.k, c.R);
+        return program().displacement(pace_.tau);
     }
     void record(const DriveRecord& r);
     const Drive& program() const { return fixed_.program(); }
     const AdaptiveDrive& adaptive() const { return tail_; }
-    // The ramp's start, floor and time, then the adaptive drive's state once it started.
+    const CrackPace& pace() const { return pace_; }
+    // The ramp's start, floor and time, the pace's state (when on), then the adaptive drive's once it started.
     std::vector<double> state() const;
     void setState(const std::vector<double>& s);
 
@@ -150,9 +165,12 @@ private:
         l.floor = program().speedup;
         return AdaptiveDrive(l);
     }
+    // The program's time at time t: the pace's clock, or t.
+    double clock(double t) const { return pace_.on() ? pace_.tau : t; }
     ConstantRateDrive fixed_;
     AdaptiveDrive tail_;
     AdaptiveDrive::Limits lim_;  // floor: loss_speedup
+    CrackPace pace_;
 };
 
 }  // namespace ldem

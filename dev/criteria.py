@@ -1,0 +1,85 @@
+#!/usr/bin/python3
+"""Issue 41, item 3: is a run's recorded load quasi-static? From a run's
+curve.csv and summary.json (the load-cell records, as written):
+
+  (a) after the peak, the rms of the load's distance from its running mean over
+      one fundamental period T1, in % of the peak;
+  (b) given a second run of the same specimen at a quarter of the rate, the
+      change of the peak and of the fracture energy: at the load loss where
+      the runs have one (the cubes, stopped there), else at the same strain;
+  (c) how many periods T1 after the smooth start the peak comes.
+
+    /usr/bin/python3 dev/criteria.py RUN [QUARTER_RATE_RUN] [--label NAME] [--until STRAIN]
+
+Prints one table row (markdown). `--until` ends (a)'s window and (b)'s
+fracture energy at that strain (default: the shorter of the two curves).
+"""
+import argparse, csv, json, math
+import numpy as np
+
+
+def load(out):
+    rows = list(csv.DictReader(open(out + "/curve.csv")))
+    s = json.load(open(out + "/summary.json"))
+    col = lambda k: np.array([float(r[k]) for r in rows])
+    return {"t": col("time_s"), "F": col("stress_MPa"), "e": col("mean_strain"), "Uf": col("fracture_J"), "s": s}
+
+
+def running_mean(t, F, T):
+    """The mean of F over [t - T/2, t + T/2] (trapezoids on the records), NaN where the window leaves the curve."""
+    m = np.full_like(F, np.nan)
+    c = np.concatenate([[0.0], np.cumsum(0.5 * (F[1:] + F[:-1]) * np.diff(t))])
+    for i, ti in enumerate(t):
+        a, b = ti - T / 2, ti + T / 2
+        if a < t[0] or b > t[-1]:
+            continue
+        m[i] = (np.interp(b, t, c) - np.interp(a, t, c)) / T
+    return m
+
+
+def ringing(r, until):
+    """(a): rms(F - mean over T1) after the peak, over the peak."""
+    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
+    ip = int(np.argmax(r["F"]))
+    end = np.searchsorted(r["e"], until) if until else len(r["F"])
+    m = running_mean(r["t"], r["F"], T1)
+    d = (r["F"] - m)[ip:end]
+    d = d[~np.isnan(d)]
+    return math.sqrt(np.mean(d ** 2)) / r["F"][ip] if len(d) else float("nan")
+
+
+def periods_after_start(r):
+    """(c): (t_peak - t_ramp) / T1."""
+    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
+    return (r["t"][int(np.argmax(r["F"]))] - r["s"]["ramp_time_s"]) / T1
+
+
+def energy_at(r, strain):
+    """The fracture energy at the load loss where the run has one (the cubes'), else at the strain."""
+    loss = r["s"].get("load_loss")
+    return loss["fracture_energy_J"] if loss else float(np.interp(strain, r["e"], r["Uf"]))
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("run")
+    ap.add_argument("quarter", nargs="?")
+    ap.add_argument("--label", default="")
+    ap.add_argument("--until", type=float, default=None)
+    a = ap.parse_args()
+    r = load(a.run)
+    q = load(a.quarter) if a.quarter else None
+    until = a.until or min(r["e"][-1], q["e"][-1] if q else r["e"][-1])
+    peak = r["F"].max()
+    cells = [a.label or a.run, f"{r['s']['peak_stress_MPa']:.5g}", f"{ringing(r, until) * 100:.2f} %",
+             f"{periods_after_start(r):.1f}"]
+    if q:
+        cells += [f"{(peak / q['F'].max() - 1) * 100:+.2f} %",
+                  f"{(energy_at(r, until) / energy_at(q, until) - 1) * 100:+.2f} %",
+                  f"{ringing(q, until) * 100:.2f} %", f"{periods_after_start(q):.1f}"]
+    cells += [f"{r['s']['steps']}", f"{r['s']['wall_s']:.0f} s"]
+    print("| " + " | ".join(cells) + " |")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,72 @@
+// The drive's pace before the load loss (tail_drive adaptive): slow while the
+// lattice moves by itself (a crack runs, a burst rings), at the given rate
+// where nothing happens (issue 41, item 3).
+// Parameters: crack_pace, crack_kinetic (LDEM_ADAPTIVE_DRIVE_PARAMETERS); the
+// brake's bound is the adaptive drive's inertia budget (tail_drag), its release
+// the ratio tail_step.
+//
+// Why. At and past its peak a large specimen releases elastic energy into its
+// cracks faster than the drive loads it; a drive that keeps its rate feeds the
+// running crack as well, and what it feeds depends on the rate. Measured on
+// the 0.48 m uniform cube, seed 1 (results/dynamics/criteria.md): the fracture
+// energy at the load loss is 23.21 J at 0.02 /s, 21.80 J at a quarter and
+// 21.47 J at a sixteenth of that rate, while the peak moves by 0.5 % and 0.07 %.
+// A whole test at a sixteenth costs 11 times the steps; slowing the drive only
+// while the lattice moves by itself takes 1.8 times the steps to the load loss
+// (9,512 against 5,162), and the quarter rate's energy moves by +1.3 % from it.
+//
+// The drive's program U(tau) (ConstantRateDrive.hpp) runs on its own clock tau,
+//   d tau / dt = P,
+// the pace P in [crack_pace, 1]. At each record (K the kinetic energy, W the
+// external work, U_f the fracture energy, at that state):
+//   U_f grew since the last record, K > crack_kinetic x W, the load not lost:  target crack_pace
+//   else                                                                       target 1
+// A specimen the drive leads quasi-statically keeps K/W small (0.06 % at the
+// 0.12 m cube's peak at 0.02 /s); a running crack turns stored energy into
+// motion. (While no bar softens there is no crack to follow: the smooth
+// start's own K/W, large in its first records, is the drive's and left alone.) After the load loss the adaptive
+// tail takes over (AdaptiveDrive.hpp) and the pace returns to 1.
+// The pace moves towards its target within the adaptive drive's bounds: down
+// by at most B = tail_drag peak T / (rho H v0) per record (the drive's
+// deceleration puts at most tail_drag x peak on a column of the specimen's
+// height), up by at most the ratio tail_step. Within a record interval of R
+// steps it ramps linearly from P_0 to P_1, as the tail's factor does:
+//   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R),   k = 0..R-1.
+// crack_pace = 1: tau = t, the constant-rate program, bit for bit.
+#pragma once
+#include <vector>
+
+namespace ldem {
+
+class CrackPace {
+public:
+    struct Limits {
+        double slowest = 1;     // crack_pace
+        double kinetic = 1e-3;  // crack_kinetic
+        double brake = 0;    // B per unit peak stress: tail_drag T / (rho H v0) [1/Pa]; 0: at once
+        double step = 1.1;   // tail_step
+    };
+    CrackPace() = default;
+    explicit CrackPace(const Limits& l) : lim_(l) {}
+    bool on() const { return lim_.slowest < 1; }
+    // The criterion (a pure function): the pace the drive heads for.
+    static double target(const Limits& l, double kinetic, double work, bool cracking, bool lost);
+    // The pace at the end of the next record interval from P0, towards target.
+    static double next(const Limits& l, double P0, double target, double peakStress);
+    // At a record (state n): K, W, U_f, the load lost, the peak so far.
+    void record(double kinetic, double work, double fracture, bool lost, double peakStress);
+    // tau(n+1) from tau(n), step k (0..R-1) of the interval.
+    void advance(double dt, int k, int R) { tauBefore = tau, tau += dt * (P0_ + (P1_ - P0_) * (k + 1) / R); }
+    double pace() const { return P1_; }  // the pace the current interval ends at
+    double tau = 0, tauBefore = 0;       // the program's clock at t_n and t_n-1 [s]
+    std::vector<double> state() const { return {tau, tauBefore, P0_, P1_, fracture_}; }
+    void setState(const std::vector<double>& s);
+    static constexpr int kStateSize = 5;
+
+private:
+    Limits lim_;
+    double P0_ = 1, P1_ = 1;
+    double fracture_ = 0;  // U_f at the last record [J]
+};
+
+}  // namespace ldem
