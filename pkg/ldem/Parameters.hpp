@@ -92,9 +92,10 @@
     X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                      \
       "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "  \
       "over the record's steps")                                                                             \
-    X(double, crackPace, "crack_pace", 0.0625, "", Domain::openClosed(0, 1),                                 \
+    X(double, crackPace, "crack_pace", 1.0, "", Domain::openClosed(0, 1),                                    \
       "tail_drive adaptive: the drive's velocity factor (over strain_rate) before the load loss while the "  \
-      "lattice moves by itself (crack_kinetic; 1: never slowed; dynamics/CrackPace.hpp)")                    \
+      "lattice moves by itself (crack_kinetic; 1, the default: never slowed; 0.0625 on the cubes: "          \
+      "dynamics/CrackPace.hpp)")                                                                             \
     X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
       "tail_drive adaptive: the kinetic energy, over the external work, above which the drive slows to "     \
       "crack_pace (a tenth of the quasi-static flag's 1 % at the peak)")

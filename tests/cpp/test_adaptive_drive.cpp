@@ -215,7 +215,7 @@ struct CubeRun {
     std::vector<CurvePoint> rows;
 };
 
-// crackPace 1: the tail alone (the pace before the load loss: test_crack_pace.cpp).
+// crackPace 1 (the default): the tail alone (the pace before the load loss: test_crack_pace.cpp).
 CubeRun runCube(TailDrive drive, std::int64_t seed = 2, double crackPace = 1) {
     Material m;
     LoadingParams lp;
@@ -263,7 +263,8 @@ TEST(AdaptiveDriveRun, SameBitsToTheLoadLossThenFewerStepsToTheSameU) {
 // stopped: the drive's U, U(n-1), its factors and averages are in the checkpoint.
 TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     Material m;
-    LoadingParams lp;  // the default drive, its pace on
+    LoadingParams lp;
+    lp.crackPace = 0.0625;  // the pace on: its clock and pace are in the checkpoint too
     RunParams rp;
     rp.threads = 1, rp.seed = 2;
     const CubeRun whole = runCube(TailDrive::Adaptive, 2, lp.crackPace);

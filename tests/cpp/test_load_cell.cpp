@@ -14,7 +14,6 @@ using namespace ldem;
 TEST(LoadCell, RecordIsTheMeanOfItsIntervalsStates) {
     Material m;
     LoadingParams lp;
-    lp.crackPace = 1;  // the pace follows the records: one a step would pace another run
     RunParams rp;
     rp.threads = 1, rp.finalStrain = 2.6e-4;  // past the peak: the load rings as bars break
     const int R = 10;

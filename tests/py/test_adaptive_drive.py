@@ -22,8 +22,7 @@ def runs(tmp_path_factory):
     out = {}
     for drive in ("fixed", "adaptive"):
         d = tmp_path_factory.mktemp(drive)
-        # the tail alone: the pace before the load loss (test_crack_pace.py) off
-        r = run_cli("cube", *ARGS, "--tail-drive", drive, "--crack-pace", "1", "--out", str(d))
+        r = run_cli("cube", *ARGS, "--tail-drive", drive, "--out", str(d))
         assert r.returncode == 0, r.stderr
         out[drive] = json.loads((d / "summary.json").read_text())
     return out
@@ -68,13 +67,10 @@ def test_a_checkpoint_past_the_load_loss_restarts_on_the_same_bits(runs):
     first = test.simulation()
     first.run(lambda p: p.step < stop)
     state = first.checkpoint()
-    # the ramp's start, floor and time, the pace's clock (tau, tau before), pace (P_0, P_1) and U_f, then the
-    # adaptive drive's
-    drive = np.asarray(state["part_drive_adaptive"])
-    assert drive.size == 16 and drive[8] == 1.0  # active, its state stored
-    assert drive[5] == drive[6] == 1.0  # the pace is back at 1 past the load loss
+    drive = np.asarray(state["part_drive_adaptive"])  # the ramp's start, floor and time, then the adaptive drive's
+    assert drive.size == 11 and drive[3] == 1.0  # active, its state stored (no pace: crack_pace 1, the default)
     assert drive[1] == 20.0  # the floor: the bound leaves the 0.08 m cube the fixed drive's ramp
-    assert drive[11] > 20.0 and drive[12] > 20.0  # S_0, S_1: faster than the fixed drive there
+    assert drive[6] > 20.0 and drive[7] > 20.0  # S_0, S_1: faster than the fixed drive there
     second = test.simulation()
     second.restore(state)
     rest = []

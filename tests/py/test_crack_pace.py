@@ -25,7 +25,7 @@ def run(tmp_path_factory, *more):
 
 def test_the_parameters_come_from_the_table(cli):
     table = {p["name"]: p for p in _core.parameter_table()}
-    assert table["crack_pace"]["default"] == 0.0625 and table["crack_kinetic"]["default"] == 1e-3
+    assert table["crack_pace"]["default"] == 1.0 and table["crack_kinetic"]["default"] == 1e-3  # off by default
     r = cli("cube", "--help")
     assert "--crack-pace" in r.stdout and "--crack-kinetic" in r.stdout
 
@@ -33,8 +33,10 @@ def test_the_parameters_come_from_the_table(cli):
 def test_at_pace_one_the_adaptive_drive_is_the_fixed_drive_until_the_load_loss(tmp_path_factory):
     fixed = run(tmp_path_factory, "--size", "0.08", "--tail-drive", "fixed")
     unpaced = run(tmp_path_factory, "--size", "0.08", "--crack-pace", "1")
+    paced = run(tmp_path_factory, "--size", "0.08", "--crack-pace", "0.0625")
     assert unpaced["peak_stress_MPa"] == fixed["peak_stress_MPa"]
     assert unpaced["load_loss"] == fixed["load_loss"]
+    assert paced["load_loss"] != fixed["load_loss"]  # the pace acts on this cube
 
 
 @pytest.fixture(scope="module")
