@@ -63,11 +63,13 @@ def main() -> None:
     for t, s in zip(tests, study.run_cases(tests, args.runs, progress=False, log=lambda line: None)):
         name, run = t.name, study.case_dir(args.runs, t)
         pictures = [matplotlib.image.imread(os.path.join(run, p)) for p in ("curve.png", "cracks.png")]
-        title = (f"examples/{name}.toml: peak {s['peak_stress_MPa']:.3f} MPa, {s['n_bars']} bars, "
-                 f"{s['wall_s']:.0f} s on {s['threads']} thread(s)")
+        # the peak in the specimen's own words (its stress label: "load F [MN]", "F/(bD) [MPa]", ...)
+        title = (f"examples/{name}.toml: peak {s['peak_stress_MPa']:.4g} ({s['labels']['stress']}), "
+                 f"{s['n_bars']} bars, {s['wall_s']:.0f} s on {s['threads']} thread(s)")
         side_by_side(pictures, title, os.path.join(args.out, name + ".png"))
-        print(f"{name}: peak {s['peak_stress_MPa']:.4f} MPa at strain {s['strain_at_peak']:.3e}, stop "
-              f"{s['stop_reason']}, energy balance error {s['energy_balance_error']:.1e}, {s['wall_s']:.0f} s")
+        print(f"{name}: peak {s['peak_stress_MPa']:.4g} ({s['labels']['stress']}) at {s['strain_at_peak']:.3e} "
+              f"({s['labels']['strain']}), stop {s['stop_reason']}, energy balance error "
+              f"{s['energy_balance_error']:.1e}, {s['wall_s']:.0f} s")
 
 
 if __name__ == "__main__":
