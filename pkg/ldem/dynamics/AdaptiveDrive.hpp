@@ -1,7 +1,8 @@
 // The adaptive drive after the load loss (tail_drive adaptive): the engine
 // (AdaptiveDrive) and the drive part that uses it (AdaptiveTailDrive), which
 // before the load loss slows while the cracks run (CrackPace.hpp).
-// Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step, crack_pace);
+// Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step; the pace's
+// crack_pace, crack_kinetic);
 // loss_speedup caps its floor.
 //
 // Between the load loss and separation the specimen is mostly chains straightening; what

@@ -24,8 +24,9 @@
 // A specimen the drive leads quasi-statically keeps K/W small (0.06 % at the
 // 0.12 m cube's peak at 0.02 /s); a running crack turns stored energy into
 // motion. (While no bar softens there is no crack to follow: the smooth
-// start's own K/W, large in its first records, is the drive's and left alone.) After the load loss the adaptive
-// tail takes over (AdaptiveDrive.hpp) and the pace returns to 1.
+// start's own K/W, large in its first records, is the drive's and left alone.)
+// After the load loss the adaptive tail takes over (AdaptiveDrive.hpp) and the
+// pace returns to 1.
 // The pace moves towards its target within the adaptive drive's bounds: down
 // by at most B = tail_drag peak T / (rho H v0) per record (the drive's
 // deceleration puts at most tail_drag x peak on a column of the specimen's
@@ -33,8 +34,8 @@
 // steps it ramps linearly from P_0 to P_1, as the tail's factor does:
 //   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R),   k = 0..R-1.
 // crack_pace = 1 (the default): tau = t, the constant-rate program, bit for bit.
-// Not yet the default because the criterion counts the kinetic energy of the
-// specimen's own motion under the drive: on the coarse notched beam at 0.1 D/s
+// Not the default: the criterion counts the kinetic energy of the specimen's
+// own motion under the drive: on the coarse notched beam at 0.1 D/s
 // that is near 1e-3 of W, the pace brakes and releases in turn, and the peak
 // rose by 11 % (results/dynamics/criteria.md).
 #pragma once
@@ -47,8 +48,8 @@ public:
     struct Limits {
         double slowest = 1;     // crack_pace
         double kinetic = 1e-3;  // crack_kinetic
-        double brake = 0;    // B per unit peak stress: tail_drag T / (rho H v0) [1/Pa]; 0: at once
-        double step = 1.1;   // tail_step
+        double brake = 0;       // B per unit peak stress: tail_drag T / (rho H v0) [1/Pa]; 0: at once
+        double step = 1.1;      // tail_step
     };
     CrackPace() = default;
     explicit CrackPace(const Limits& l) : lim_(l) {}
