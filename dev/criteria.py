@@ -6,7 +6,7 @@ curve.csv and summary.json (the load-cell records, as written):
       one fundamental period T1, in % of the peak;
   (b) given a second run of the same specimen at a quarter of the rate, the
       change of the peak and of the fracture energy: at the load loss where
-      the runs have one (the cubes, stopped there), else at the same strain;
+      both runs have one (the cubes, stopped there), else at the same strain;
   (c) how many periods T1 after the smooth start the peak comes.
 
     /usr/bin/python3 dev/criteria.py RUN [QUARTER_RATE_RUN] [--label NAME] [--until STRAIN]
@@ -54,10 +54,9 @@ def periods_after_start(r):
     return (r["t"][int(np.argmax(r["F"]))] - r["s"]["ramp_time_s"]) / T1
 
 
-def energy_at(r, strain):
-    """The fracture energy at the load loss where the run has one (the cubes'), else at the strain."""
-    loss = r["s"].get("load_loss")
-    return loss["fracture_energy_J"] if loss else float(np.interp(strain, r["e"], r["Uf"]))
+def energy_at(r, strain, at_loss):
+    """The fracture energy at the load loss (at_loss: both runs have one), else at the strain."""
+    return r["s"]["load_loss"]["fracture_energy_J"] if at_loss else float(np.interp(strain, r["e"], r["Uf"]))
 
 
 def main():
@@ -74,8 +73,9 @@ def main():
     cells = [a.label or a.run, f"{r['s']['peak_stress_MPa']:.5g}", f"{ringing(r, until) * 100:.2f} %",
              f"{periods_after_start(r):.1f}"]
     if q:
+        at_loss = bool(r["s"].get("load_loss") and q["s"].get("load_loss"))  # else both at the same strain
         cells += [f"{(peak / q['F'].max() - 1) * 100:+.2f} %",
-                  f"{(energy_at(r, until) / energy_at(q, until) - 1) * 100:+.2f} %",
+                  f"{(energy_at(r, until, at_loss) / energy_at(q, until, at_loss) - 1) * 100:+.2f} %",
                   f"{ringing(q, until) * 100:.2f} %", f"{periods_after_start(q):.1f}"]
     cells += [f"{r['s']['steps']}", f"{r['s']['wall_s']:.0f} s"]
     print("| " + " | ".join(cells) + " |")
