@@ -234,7 +234,7 @@ class Scratch:
                "direct" if direct else "not direct", "tests/py"]
         if fail_fast:
             cmd.insert(3, "-x")
-        for test in skip:
+        for test in (*skip, MANIFEST_CHECK):
             cmd += ["--deselect", "tests/py/" + test]
         try:
             r = sh(cmd, cwd=self.src, env=env, log=log, timeout=timeout, check=False)
@@ -244,6 +244,11 @@ class Scratch:
             return []
         return all_matches(log, PYTEST_FAILED_RE) or [f"exit {r.returncode} (see log)"]
 
+
+# The manifest's own check, that each sed changes its file: in a copy the sed has
+# mutated it fails by construction, so it would count every mutation the suite
+# misses up to it as caught (four did on fad7904, tests/mutation/last_run.md).
+MANIFEST_CHECK = "test_mutation_catalogue.py::test_mutation_applies"
 
 # The direct checks: GoogleTest suites named Direct* (tests/cpp) and pytest tests
 # marked direct (tests/py/conftest.py registers the marker and runs them first).
