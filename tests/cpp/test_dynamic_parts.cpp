@@ -52,6 +52,10 @@ void driveRoundTrip(D first, D fresh, int records) {
     std::vector<double> before, a, b;
     go(first, s, 0, records, before);
     fresh.setState(first.state());
+    // The first step after a restart reads U(n) and U(n-1) before any next() (Simulation::finishStep).
+    const double at = recordAt(records).time;
+    ASSERT_TRUE(sameBits(fresh.now(at, kDt), first.now(at, kDt)));
+    ASSERT_TRUE(sameBits(fresh.before(at, kDt), first.before(at, kDt)));
     RunSummary t = s;
     go(first, s, records, records + 20, a);
     go(fresh, t, records, records + 20, b);
@@ -108,6 +112,27 @@ TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {
     ServoDrive::Params p;
     p.openingRate = 1e-3;
     driveRoundTrip(ServoDrive(p, fixedDrive(), 50.0), ServoDrive(p, fixedDrive(), 50.0), 6);
+}
+
+// The servo drive closes a lag at the rate g = D_f / 2 (ServoDrive.hpp): on a
+// plant whose opening is c = a U, U' = (r S' + g (c* - c)) / a gives
+// (c* - c)' = -g (c* - c), so a lag delta left one time constant 1/g later is
+// delta/e (dt g = 2.5e-4: to 1e-3). Stepped, the lag tends to -r dt/2 (the
+// program is read at mid-step, the opening at t_n): delta - that decays.
+// Without the correction the lag stays delta.
+TEST(DynamicParts, TheServoClosesALagAtHalfTheDampingRate) {
+    ServoDrive::Params p;
+    p.openingRate = 1e-3;  // r [m/s]
+    const double Df = 50.0, a = 2.0, dt = 1e-5, t0 = 1e-3, delta = 3e-7;
+    ServoDrive d(p, fixedDrive(), Df);
+    const Drive& program = d.program();
+    auto onProgram = [&](double t) { return p.openingRate * smoothRampIntegral(t, program.rampTime); };
+    const double U0 = (onProgram(t0) - delta) / a;
+    d.setState({U0, U0});
+    const int steps = int(std::lround(1.0 / (0.5 * Df) / dt));
+    for (int n = 0; n < steps; ++n) d.next(DriveStep{t0 + n * dt, dt, n % kR, kR, a * d.now(0, dt)});
+    const double lag = onProgram(t0 + steps * dt) - a * d.now(0, dt), steady = -0.5 * p.openingRate * dt;
+    EXPECT_NEAR((lag - steady) / (delta - steady), std::exp(-1.0), 1e-3);
 }
 
 // Stop rules and the load-loss test: the same events and reasons after the round trip.
