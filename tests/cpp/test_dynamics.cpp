@@ -461,6 +461,7 @@ TEST(Dynamics, AFinishedRunExtendedEndsOnTheBitsOfAStraightRun) {
     ASSERT_EQ(first.run().stopReason, "final_strain");
     Simulation extended(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, longRun);
     extended.restore(first.checkpoint());
+    EXPECT_EQ(extended.summarySoFar().stopReason, "");  // set back to its last record, it has not stopped
     const RunSummary e = extended.run();
     Simulation straight(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, longRun);
     const RunSummary s = straight.run();
