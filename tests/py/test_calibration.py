@@ -20,6 +20,31 @@ def test_mc2010_fracture_energy_of_the_gregoire_concrete():
         concrete.mc2010_fracture_energy(0.0)
 
 
+def test_mc2010_properties_from_the_compressive_strength_alone():
+    """fib MC2010 from f_cm: E_ci = 21.5 GPa (f_cm/10)^(1/3); f_ctm = 0.30 f_ck^(2/3)
+    up to C50, 2.12 ln(1 + f_cm/10) above, f_ck = f_cm - 8 MPa; G_F = 73 f_cm^0.18."""
+    low = concrete.mc2010_from_compressive_strength(29.0e6)  # f_ck 21 MPa
+    assert low["E"] == pytest.approx(21.5e9 * 2.9 ** (1 / 3), rel=1e-12)
+    assert low["E"] == pytest.approx(30.66e9, rel=1e-3)
+    assert low["f_t"] == pytest.approx(0.30 * 21.0 ** (2 / 3) * 1e6, rel=1e-12)
+    assert low["f_t"] == pytest.approx(2.284e6, rel=1e-3)
+    assert low["G_F"] == concrete.mc2010_fracture_energy(29.0e6) and low["nu"] == 0.2
+    assert low["sources"]["f_t"].endswith("5.1-3a, f_ctm")
+    high = concrete.mc2010_from_compressive_strength(58.9e6)  # f_ck 50.9 MPa: above C50
+    assert high["f_t"] == pytest.approx(2.12 * math.log(1 + 5.89) * 1e6, rel=1e-12)
+    assert high["sources"]["f_t"].endswith("5.1-3b, f_ctm")
+    # the two branches meet near C50 (within 0.5 %)
+    below, above = (concrete.mc2010_from_compressive_strength(f)["f_t"] for f in (58.0e6, 58.01e6))
+    assert above == pytest.approx(below, rel=5e-3)
+    with pytest.raises(ValueError, match="f_ck"):
+        concrete.mc2010_from_compressive_strength(7e6)
+
+
+def test_the_command_line_without_E_or_f_c_says_what_is_missing(cli):
+    p = cli("study", "calibration", "--nu", "0.2", "--ft", "3.9e6", "--L0", "0.01")
+    assert p.returncode == 2 and p.stderr == "ldem study: error: give --E, or --fc for fib MC2010's\n", p.stderr
+
+
 def test_the_gauges_read_the_elastic_constants_of_a_known_curve():
     """A linear rising branch of E = 30 GPa, nu = 0.2, then a drop: the fit
     takes 20-60 % of the peak and ignores the softening."""

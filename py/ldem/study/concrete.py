@@ -108,6 +108,33 @@ def mc2010_fracture_energy(f_c: float) -> float:
     return 73.0 * (f_c / 1e6) ** 0.18
 
 
+def mc2010_from_compressive_strength(f_c: float) -> dict:
+    """What fib Model Code 2010 gives from the mean compressive strength f_c [Pa]
+    alone (section 5.1), for a concrete of which nothing else was measured:
+    - f_ck = f_cm - 8 MPa (eq. 5.1-1);
+    - E = E_ci = 21.5 GPa (f_cm/10)^(1/3) (eq. 5.1-21, quartzite aggregate,
+      alpha_E = 1): the tangent modulus at the origin. The reduced E_c of
+      eq. 5.1-23 allows for the plastic strain of a cylinder in compression;
+      a bending test's tension side stays below f_t, far from it;
+    - f_t = f_ctm, the mean axial tensile strength: 0.30 f_ck^(2/3) up to C50,
+      2.12 ln(1 + f_cm/10) above (eqs. 5.1-3a, 5.1-3b; MPa);
+    - G_F = 73 f_cm^0.18 (eq. 5.1-9);
+    - nu = 0.2 (section 5.1.7.3).
+    Returns {"E", "nu", "f_t", "G_F"} in Pa and N/m, and "sources"."""
+    if f_c <= 0:
+        raise ValueError(f"f_c must be positive (got {f_c:g} Pa)")
+    fcm = f_c / 1e6
+    fck = fcm - 8.0
+    if fck <= 0:
+        raise ValueError(f"f_c = {fcm:g} MPa: f_ck = f_cm - 8 MPa is not positive, outside fib MC2010")
+    f_t = 0.30 * fck ** (2 / 3) if fck <= 50 else 2.12 * np.log(1 + fcm / 10)
+    return {"E": 21.5e9 * (fcm / 10) ** (1 / 3), "nu": 0.2, "f_t": float(f_t) * 1e6,
+            "G_F": mc2010_fracture_energy(f_c),
+            "sources": {"E": "fib MC2010 eq. 5.1-21, E_ci (alpha_E = 1)",
+                        "f_t": "fib MC2010 eq. 5.1-3" + ("a" if fck <= 50 else "b") + ", f_ctm",
+                        "G_F": "fib MC2010 eq. 5.1-9", "nu": "fib MC2010 5.1.7.3"}}
+
+
 def lattice_material(E: float, nu: float, eps_p: float, G_F: float, rho: float = 2400.0) -> dict:
     """The material parameters of the procedure's law: bilinear with the
     initial share and kink above, the study's field."""
@@ -214,11 +241,13 @@ def work_of_fracture(curve: dict) -> float:
 
 
 def add_arguments(c) -> None:
-    lab = "; the concrete's, as the laboratory reports it"
-    parameter_option(c, "E", "--E", lab, default=None, required=True)
-    parameter_option(c, "nu", "--nu", lab, default=None, required=True)
-    c.add_argument("--ft", type=float, required=True, help="direct tensile strength [Pa]")
-    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa] (for G_F if not given)")
+    lab = "; the concrete's, as the laboratory reports it (default: fib MC2010's from --fc)"
+    parameter_option(c, "E", "--E", lab, default=None)
+    parameter_option(c, "nu", "--nu", lab, default=None)
+    c.add_argument("--ft", type=float, default=None, help="direct tensile strength [Pa] (default: fib MC2010's "
+                                                          "f_ctm from --fc)")
+    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa]: for what else is not "
+                                                          "given (mc2010_from_compressive_strength)")
     c.add_argument("--GF", type=float, default=None, help="total fracture energy [N/m] (default: fib MC2010's)")
     parameter_option(c, "rho", "--rho", lab)
     parameter_option(c, "L0", "--L0", "; the module of the structure to model", default=None, required=True)
@@ -227,9 +256,22 @@ def add_arguments(c) -> None:
 
 
 def cmd_calibration(args) -> int:
-    """Prints each prism and round, then the result (JSON), also written to --out."""
-    result = calibrate(args.E, args.nu, args.ft, args.fc, args.GF, args.rho, args.L0,
+    """Prints each prism and round, then the result (JSON), also written to --out.
+    What is not given comes from fib MC2010 and --fc (the result's "sources")."""
+    given = {"E": args.E, "nu": args.nu, "f_t": args.ft}
+    sources = {k: "given" for k, v in given.items() if v is not None}
+    if None in given.values():
+        if args.fc is None:
+            missing = ", ".join("--" + {"f_t": "ft"}.get(k, k) for k, v in given.items() if v is None)
+            raise ValueError(f"give {missing}, or --fc for fib MC2010's")
+        mc = mc2010_from_compressive_strength(args.fc)
+        for k, v in given.items():
+            if v is None:
+                given[k], sources[k] = mc[k], mc["sources"][k]
+    sources["G_F"] = "given" if args.GF is not None else "fib MC2010 eq. 5.1-9"
+    result = calibrate(given["E"], given["nu"], given["f_t"], args.fc, args.GF, args.rho, args.L0,
                        range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
+    result["sources"] = sources
     text = json.dumps(result, indent=1)
     print(text)
     if args.out:
@@ -238,7 +280,7 @@ def cmd_calibration(args) -> int:
 
 
 register(Study("calibration", "the lattice material of a concrete from what a laboratory reports (E, nu, f_t, "
-                              "f_c or G_F), by the virtual prism", add_arguments, cmd_calibration,
+                              "f_c or G_F; or f_c alone, with fib MC2010), by the virtual prism", add_arguments, cmd_calibration,
                "Runs the virtual direct tension prism (seeds 1..N, to its load loss) until its E and f_t are "
                "within 1 % of the targets (docs/calibration.md); use the parameters under [material] of a "
                "specimen file with the same L0."))
