@@ -86,8 +86,15 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
     loadedSlot_ = ownedLayerSlots(lat_, *loaded_);
-    cd_ = nodeUpdate(dampings_, dt_);
+    cd_ = nodeRule();
     layerDamping_.assign(lat_.numLayers(), 0.0);
+}
+
+// The node update of the dampings, with the free DOFs' weight under gravity (along -z).
+CentralDifference Simulation::nodeRule() {
+    CentralDifference cd = nodeUpdate(dampings_, dt_);
+    cd.gz = -run_.gravity;
+    return cd;
 }
 
 std::vector<double> Simulation::fractureEnergyField() const {
@@ -200,7 +207,8 @@ CurvePoint Simulation::measure() const {
     const BarEnergies e = barEnergies(lat_, u_, law_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
-    p.externalWork = externalWork_;
+    // The weight's work is the drive's companion: the external work (Integrator.hpp, weightWork).
+    p.externalWork = externalWork_ + weightWork(lat_, pre_.mask, cd_.gz, dt_, u_, v_);
     // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
     p.damping = dampingWork_ + ownedLayerSum([&](int m) { return sumOver(dampings_, [m](const auto& d) { return d.closingWork(m); }); });
     return p;
@@ -339,7 +347,7 @@ void Simulation::restore(const Checkpoint& c) {
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(c.parts[k++].second); }, r);
     std::apply([&](auto&... d) { (d.setState(c.parts[k++].second), ...); }, dampings_);
     kineticAtPeak_.setState(c.parts[k++].second);
-    cd_ = nodeUpdate(dampings_, dt_);
+    cd_ = nodeRule();
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
@@ -355,7 +363,7 @@ void Simulation::recordParts(const CurvePoint& p) {
     const DriveRecord dr{p, s, !lossBefore && s.loadLoss.reached(), dt_};
     std::visit([&](auto& d) { d.record(dr); }, drive_);
     recordDampings(dampings_, DampingRecord{s, v_});
-    cd_ = nodeUpdate(dampings_, dt_);  // (relative damping: from the load loss on)
+    cd_ = nodeRule();  // (relative damping: from the load loss on)
     const std::function<bool()> joined = [this] { return facesJoined(); };
     StopRecord sr{p, s, lost, joined};
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.record(sr); }, r);

@@ -100,7 +100,7 @@ public:
 
     // Sets dt without the stability check: for tests of the instability
     // detector and for studies of the stability limit itself.
-    void forceTimeStep(double dt) { dt_ = dt, cd_ = nodeUpdate(dampings_, dt_); }
+    void forceTimeStep(double dt) { dt_ = dt, cd_ = nodeRule(); }
 
     const Lattice& lattice() const { return lat_; }
     const Prescribed& prescribed() const { return pre_; }
@@ -167,6 +167,7 @@ private:
     void recordParts(const CurvePoint& p);
     std::string stopReason(const CurvePoint& p) const;
     double advanceNodes(int layer);
+    CentralDifference nodeRule();
     double ownedLayerSum(const std::function<double(int)>& ofLayer) const;  // in layer order, over the ranks
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
