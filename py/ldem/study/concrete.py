@@ -100,6 +100,9 @@ GF_CV, C_A = 1.0, 0.1385  # the study's random field and fracture area (LDEM_SPE
 TOLERANCE, ROUNDS = 0.01, 5  # the prism's E and f_t within 1 % of the targets, at most 5 rounds
 
 
+MC2010_GF_SOURCE = "fib MC2010 eq. 5.1-9"
+
+
 def mc2010_fracture_energy(f_c: float) -> float:
     """G_F [N/m] from the mean compressive strength f_c [Pa]: fib Model Code
     2010 eq. 5.1-9, G_F = 73 f_cm^0.18 (f_cm in MPa)."""
@@ -132,7 +135,7 @@ def mc2010_from_compressive_strength(f_c: float) -> dict:
             "G_F": mc2010_fracture_energy(f_c),
             "sources": {"E": "fib MC2010 eq. 5.1-21, E_ci (alpha_E = 1)",
                         "f_t": "fib MC2010 eq. 5.1-3" + ("a" if fck <= 50 else "b") + ", f_ctm",
-                        "G_F": "fib MC2010 eq. 5.1-9", "nu": "fib MC2010 5.1.7.3"}}
+                        "G_F": MC2010_GF_SOURCE, "nu": "fib MC2010 5.1.7.3"}}
 
 
 def lattice_material(E: float, nu: float, eps_p: float, G_F: float, rho: float = 2400.0) -> dict:
@@ -268,7 +271,7 @@ def cmd_calibration(args) -> int:
         for k, v in given.items():
             if v is None:
                 given[k], sources[k] = mc[k], mc["sources"][k]
-    sources["G_F"] = "given" if args.GF is not None else "fib MC2010 eq. 5.1-9"
+    sources["G_F"] = "given" if args.GF is not None else MC2010_GF_SOURCE
     result = calibrate(given["E"], given["nu"], given["f_t"], args.fc, args.GF, args.rho, args.L0,
                        range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
     result["sources"] = sources
