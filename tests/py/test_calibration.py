@@ -45,16 +45,30 @@ def test_the_command_line_without_E_or_f_c_says_what_is_missing(cli):
     assert p.returncode == 2 and p.stderr == "ldem study: error: give --E, or --fc for fib MC2010's\n", p.stderr
 
 
+def test_the_prism_is_the_standard_one_where_L0_divides_it_and_the_nearest_whole_modules_else():
+    """50 x 50 x 100 mm at 5 and 12.5 mm; at the Malvar-Warren beams' 12.75 mm
+    (102 mm / 8) 4 x 4 x 8 modules, 51 x 51 x 102 mm, which builds (50 mm is
+    not a multiple of 12.75 mm: the shape refuses it)."""
+    assert concrete.prism_size(0.005) == concrete.PRISM == concrete.prism_size(0.0125)
+    assert concrete.prism_size(0.01275) == pytest.approx((0.051, 0.051, 0.102), rel=1e-12)
+    assert concrete.prism_size(0.06) == pytest.approx((0.12, 0.12, 0.12), rel=1e-12)  # at least 2 modules
+    material = concrete.lattice_material(30e9, 0.2, 1e-4, 100.0)
+    test = concrete.prism(material, 0.01275, 1)  # builds
+    assert test.description["shape"]["size"] == pytest.approx([0.051, 0.051, 0.102], rel=1e-12)
+    assert test.build.n == (4, 4, 8)
+    assert test.description["measure"]["area"] == pytest.approx(0.051 ** 2, rel=1e-12)
+
+
 def test_the_gauges_read_the_elastic_constants_of_a_known_curve():
     """A linear rising branch of E = 30 GPa, nu = 0.2, then a drop: the fit
     takes 20-60 % of the peak and ignores the softening."""
-    w, _, h = concrete.PRISM
+    w, _, h = concrete.prism_size(0.005)
     eps = np.linspace(0, 1e-4, 101)
     stress = 30e9 * eps
     eps = np.concatenate([eps, [1.1e-4, 1.2e-4]])
     stress = np.concatenate([stress, [1e6, 0.0]])  # softening rows, off the line
     curve = {"stress_MPa": stress / 1e6, "axial_m": eps * h / 2, "lateral_m": -0.2 * eps * w}
-    E, nu = concrete.elastic_constants(curve, stress.max() / 1e6)
+    E, nu = concrete.elastic_constants(curve, stress.max() / 1e6, 0.005)
     assert E == pytest.approx(30e9, rel=1e-9) and nu == pytest.approx(0.2, rel=1e-9)
 
 
