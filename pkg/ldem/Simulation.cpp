@@ -64,6 +64,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     }
     setup.recordEvery = recordEvery_;
     drive_ = makeDrive(load_, mat_, setup, dampings_);
+    weightRise_ = fixedDrive(load_, setup).program().rampTime;
     loadLoss_ = LoadLossDetector(splitWindow_, run_.stopFraction);
     stops_ = makeStops(run_);
 
@@ -93,8 +94,29 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
 // The node update of the dampings, with the free DOFs' weight under gravity (along -z).
 CentralDifference Simulation::nodeRule() {
     CentralDifference cd = nodeUpdate(dampings_, dt_);
-    cd.gz = -run_.gravity;
+    cd.gz = gz_;
     return cd;
+}
+
+// g_z of step n: the weight rises over the drive's smooth start as (1 - cos(pi t/t_r))/2,
+// t = n dt. Laid on its supports at once, a specimen would ring in its
+// fundamental by its whole static sag (a beam's load by +-100 N on a 1 kN
+// peak, decaying as 1/(zeta omega_1)); over two periods the ringing left is
+// about 1/((omega_1 t_r/pi)^2 - 1) = 7 % of the sag.
+double Simulation::weightAt(std::int64_t n) const {
+    return -run_.gravity * smoothRampVelocity(double(n) * dt_, weightRise_);
+}
+
+// The weight for the step about to be taken (step_). Its work, sum_n m g_n
+// (x(n+1) - x(n-1))/2, summed by parts: g_N Y_N - sum_n (g_{n+1} - g_n) Y_n
+// with Y_n = sum m (x(n+1) + x(n))/2, the last step's term being weightWork
+// (measure); each change of g puts its term into the external work here,
+// where u - dt v/2 is (x(n+1) + x(n))/2.
+void Simulation::weighNextStep() {
+    const double gz = weightAt(step_);
+    if (gz == gz_) return;
+    externalWork_ -= weightWork(lat_, pre_.mask, gz - gz_, dt_, u_, v_);
+    gz_ = cd_.gz = gz;
 }
 
 std::vector<double> Simulation::fractureEnergyField() const {
@@ -208,19 +230,21 @@ CurvePoint Simulation::measure() const {
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
     // The weight's work is the drive's companion: the external work (Integrator.hpp, weightWork).
-    p.externalWork = externalWork_ + weightWork(lat_, pre_.mask, cd_.gz, dt_, u_, v_);
+    p.externalWork = externalWork_ + weightWork(lat_, pre_.mask, gz_, dt_, u_, v_);
     // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
     p.damping = dampingWork_ + ownedLayerSum([&](int m) { return sumOver(dampings_, [m](const auto& d) { return d.closingWork(m); }); });
     return p;
 }
 
 void Simulation::step() {
+    weighNextStep();
     // One visit of the law per step: the layered pass is compiled for it.
     layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
     finishStep();
 }
 
 void Simulation::advance() {
+    weighNextStep();
 #pragma omp parallel for schedule(static)
     for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
     finishStep();
@@ -347,6 +371,7 @@ void Simulation::restore(const Checkpoint& c) {
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(c.parts[k++].second); }, r);
     std::apply([&](auto&... d) { (d.setState(c.parts[k++].second), ...); }, dampings_);
     kineticAtPeak_.setState(c.parts[k++].second);
+    gz_ = step_ > 0 ? weightAt(step_ - 1) : 0.0;  // the last step's
     cd_ = nodeRule();
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
