@@ -269,20 +269,29 @@ def add_arguments(c) -> None:
     c.add_argument("--out", default="", metavar="FILE", help="write the result here (JSON)")
 
 
-def cmd_calibration(args) -> int:
-    """Prints each prism and round, then the result (JSON), also written to --out.
-    What is not given comes from fib MC2010 and --fc (the result's "sources")."""
-    given = {"E": args.E, "nu": args.nu, "f_t": args.ft}
+def lab_values(E: Optional[float], nu: Optional[float], f_t: Optional[float], f_c: Optional[float],
+               G_F: Optional[float]) -> tuple:
+    """({"E", "nu", "f_t"}, sources): what a laboratory gave, the rest from fib
+    MC2010 and f_c (mc2010_from_compressive_strength); sources names each
+    value's origin, G_F's too (calibrate takes MC2010's G_F from f_c if not given)."""
+    given = {"E": E, "nu": nu, "f_t": f_t}
     sources = {k: "given" for k, v in given.items() if v is not None}
     if None in given.values():
-        if args.fc is None:
+        if f_c is None:
             missing = ", ".join("--" + {"f_t": "ft"}.get(k, k) for k, v in given.items() if v is None)
             raise ValueError(f"give {missing}, or --fc for fib MC2010's")
-        mc = mc2010_from_compressive_strength(args.fc)
+        mc = mc2010_from_compressive_strength(f_c)
         for k, v in given.items():
             if v is None:
                 given[k], sources[k] = mc[k], mc["sources"][k]
-    sources["G_F"] = "given" if args.GF is not None else MC2010_GF_SOURCE
+    sources["G_F"] = "given" if G_F is not None else MC2010_GF_SOURCE
+    return given, sources
+
+
+def cmd_calibration(args) -> int:
+    """Prints each prism and round, then the result (JSON), also written to --out.
+    What is not given comes from fib MC2010 and --fc (the result's "sources")."""
+    given, sources = lab_values(args.E, args.nu, args.ft, args.fc, args.GF)
     result = calibrate(given["E"], given["nu"], given["f_t"], args.fc, args.GF, args.rho, args.L0,
                        range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
     result["sources"] = sources
