@@ -9,35 +9,35 @@ import math
 import numpy as np
 import pytest
 
-from ldem.study import beam_diagnosis, beams, concrete
+from ldem.study import beam_diagnosis, beams, concrete, mc2010
 
 
 def test_mc2010_fracture_energy_of_the_gregoire_concrete():
     # fib MC2010 eq. 5.1-9: 73 x 42.3^0.18 N/m
-    assert concrete.mc2010_fracture_energy(42.3e6) == pytest.approx(73 * 42.3 ** 0.18, rel=1e-12)
-    assert concrete.mc2010_fracture_energy(42.3e6) == pytest.approx(143.24, abs=0.01)
+    assert mc2010.mc2010_fracture_energy(42.3e6) == pytest.approx(73 * 42.3 ** 0.18, rel=1e-12)
+    assert mc2010.mc2010_fracture_energy(42.3e6) == pytest.approx(143.24, abs=0.01)
     with pytest.raises(ValueError, match="f_c must be positive"):
-        concrete.mc2010_fracture_energy(0.0)
+        mc2010.mc2010_fracture_energy(0.0)
 
 
 def test_mc2010_properties_from_the_compressive_strength_alone():
     """fib MC2010 from f_cm: E_ci = 21.5 GPa (f_cm/10)^(1/3); f_ctm = 0.30 f_ck^(2/3)
     up to C50, 2.12 ln(1 + f_cm/10) above, f_ck = f_cm - 8 MPa; G_F = 73 f_cm^0.18."""
-    low = concrete.mc2010_from_compressive_strength(29.0e6)  # f_ck 21 MPa
+    low = mc2010.mc2010_from_compressive_strength(29.0e6)  # f_ck 21 MPa
     assert low["E"] == pytest.approx(21.5e9 * 2.9 ** (1 / 3), rel=1e-12)
     assert low["E"] == pytest.approx(30.66e9, rel=1e-3)
     assert low["f_t"] == pytest.approx(0.30 * 21.0 ** (2 / 3) * 1e6, rel=1e-12)
     assert low["f_t"] == pytest.approx(2.284e6, rel=1e-3)
-    assert low["G_F"] == concrete.mc2010_fracture_energy(29.0e6) and low["nu"] == 0.2
+    assert low["G_F"] == mc2010.mc2010_fracture_energy(29.0e6) and low["nu"] == 0.2
     assert low["sources"]["f_t"].endswith("5.1-3a, f_ctm")
-    high = concrete.mc2010_from_compressive_strength(58.9e6)  # f_ck 50.9 MPa: above C50
+    high = mc2010.mc2010_from_compressive_strength(58.9e6)  # f_ck 50.9 MPa: above C50
     assert high["f_t"] == pytest.approx(2.12 * math.log(1 + 5.89) * 1e6, rel=1e-12)
     assert high["sources"]["f_t"].endswith("5.1-3b, f_ctm")
     # the two branches meet near C50 (within 0.5 %)
-    below, above = (concrete.mc2010_from_compressive_strength(f)["f_t"] for f in (58.0e6, 58.01e6))
+    below, above = (mc2010.mc2010_from_compressive_strength(f)["f_t"] for f in (58.0e6, 58.01e6))
     assert above == pytest.approx(below, rel=5e-3)
     with pytest.raises(ValueError, match="f_ck"):
-        concrete.mc2010_from_compressive_strength(7e6)
+        mc2010.mc2010_from_compressive_strength(7e6)
 
 
 def test_the_command_line_without_E_or_f_c_says_what_is_missing(cli):
@@ -96,7 +96,7 @@ def test_gregoire_concrete_calibrated_on_a_coarse_prism_meets_its_targets_and_is
     r = json.loads(out.read_text())
     assert p.stdout.endswith(out.read_text()) and "round 1: E " in p.stdout and r["seeds"] == [1]
     m, t = r["material"], r["target"]
-    assert t["G_F"] == pytest.approx(concrete.mc2010_fracture_energy(42.3e6)) and m["Gf_mean"] == t["G_F"]
+    assert t["G_F"] == pytest.approx(mc2010.mc2010_fracture_energy(42.3e6)) and m["Gf_mean"] == t["G_F"]
     for k in ("E", "f_t"):
         assert r["measured"][k] == pytest.approx(t[k], rel=concrete.TOLERANCE), k
     assert (m["law"], m["Gf_ratio"], m["kink_stress"], m["Gf_cv"], m["nu"]) == ("bilinear", 0.4, 0.2, 1.0, 0.21)

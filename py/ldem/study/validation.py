@@ -26,7 +26,8 @@ import numpy as np
 
 from .. import io
 from ..specimen import SpecimenTest
-from .concrete import calibrate, lab_values, slope
+from .concrete import calibrate, slope
+from .mc2010 import lab_values
 from .beams import PastThePeak
 from .cases import Named
 from .executors import run_cases
@@ -39,7 +40,7 @@ from .tables import mean_cv
 class Blind:
     file: str  # the specimen file, from the repository's root
     # what the laboratory reported: E, nu, f_t, G_F, f_c, rho; what is missing
-    # comes from fib MC2010 and f_c (concrete.lab_values), rho is 2400 if not given
+    # comes from fib MC2010 and f_c (mc2010.lab_values), rho is 2400 if not given
     lab: Dict[str, float] = field(default_factory=dict)
     x: str = "mean_strain"  # the curve's abscissa: a column of the run's curve
     x_label: str = ""
