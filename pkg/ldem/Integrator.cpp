@@ -41,8 +41,9 @@ inline BlockMask heldLanes(const std::uint8_t* p, unsigned bit) {
 // kBlock nodes at a time, the rest one by one. The damping work adds up in
 // kBlock lanes (node first + k + kBlock j in lane k), then lane after lane: the
 // same sum on any machine and for any thread count. Mean: whether the damping
-// is relative to cd.mean (the DOF's extra argument, w).
-template <bool Mean>
+// is relative to cd.mean (the DOF's extra argument, w); Weight: whether the z
+// DOFs carry their weight m g_z (cd.gz) beside the bars' force.
+template <bool Mean, bool Weight>
 double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
                       const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
                       const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
@@ -50,6 +51,10 @@ double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<do
     auto dof = [&](auto held, auto m, auto invM, auto fi, auto& ui, auto& vi, auto& wi) {
         if constexpr (Mean) return advanceDof(held, m, invM, fi, cd, ui, vi, wi);
         else return advanceDof(held, m, invM, fi, cd, ui, vi);
+    };
+    auto weighed = [&](auto fz, auto m) {  // f_z + m g_z, or f_z untouched (the same bits without gravity)
+        if constexpr (Weight) return fz + m * cd.gz;
+        else return fz;
     };
     Block damping = {};
     std::int32_t i = first;
@@ -61,7 +66,7 @@ double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<do
         if constexpr (Mean) wx = loadBlock(&w.x[i]), wy = loadBlock(&w.y[i]), wz = loadBlock(&w.z[i]);
         damping += dof(heldLanes(&mask[i], 1), m, invM, loadBlock(&f.x[i]), ux, vx, wx) +
                    dof(heldLanes(&mask[i], 2), m, invM, loadBlock(&f.y[i]), uy, vy, wy) +
-                   dof(heldLanes(&mask[i], 4), m, invM, loadBlock(&f.z[i]), uz, vz, wz);
+                   dof(heldLanes(&mask[i], 4), m, invM, weighed(loadBlock(&f.z[i]), m), uz, vz, wz);
         storeBlock(ux, &u.x[i]), storeBlock(uy, &u.y[i]), storeBlock(uz, &u.z[i]);
         storeBlock(vx, &v.x[i]), storeBlock(vy, &v.y[i]), storeBlock(vz, &v.z[i]);
         if constexpr (Mean) storeBlock(wx, &w.x[i]), storeBlock(wy, &w.y[i]), storeBlock(wz, &w.z[i]);
@@ -71,7 +76,7 @@ double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<do
         const double m = mass[i], invM = invMass[i];
         damping[(i - first) % kBlock] += dof(bool(held & 1), m, invM, f.x[i], u.x[i], v.x[i], w.x[i]) +
                                          dof(bool(held & 2), m, invM, f.y[i], u.y[i], v.y[i], w.y[i]) +
-                                         dof(bool(held & 4), m, invM, f.z[i], u.z[i], v.z[i], w.z[i]);
+                                         dof(bool(held & 4), m, invM, weighed(f.z[i], m), u.z[i], v.z[i], w.z[i]);
     }
     double sum = 0.0;
     for (int k = 0; k < kBlock; ++k) sum += damping[k];
@@ -82,8 +87,11 @@ double advanceNodesOf(std::int32_t first, std::int32_t end, const std::vector<do
 double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<double>& mass,
                     const std::vector<double>& invMass, const std::vector<std::uint8_t>& mask,
                     const CentralDifference& cd, const Field3& f, Field3& u, Field3& v) {
-    return cd.mean ? advanceNodesOf<true>(first, end, mass, invMass, mask, cd, f, u, v)
-                   : advanceNodesOf<false>(first, end, mass, invMass, mask, cd, f, u, v);
+    if (cd.gz != 0)
+        return cd.mean ? advanceNodesOf<true, true>(first, end, mass, invMass, mask, cd, f, u, v)
+                       : advanceNodesOf<false, true>(first, end, mass, invMass, mask, cd, f, u, v);
+    return cd.mean ? advanceNodesOf<true, false>(first, end, mass, invMass, mask, cd, f, u, v)
+                   : advanceNodesOf<false, false>(first, end, mass, invMass, mask, cd, f, u, v);
 }
 
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
@@ -94,6 +102,14 @@ double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, cons
         damping += advanceNodes(row.first, row.first + row.count, lat.mass, lat.invMass, mask, cd, f, u, v);
     }
     return damping;
+}
+
+double weightWork(const Lattice& lat, const std::vector<std::uint8_t>& mask, double gz, double dt, const Field3& u,
+                  const Field3& v) {
+    if (gz == 0) return 0.0;
+    return nodeSum<1>(lat, [&](std::int32_t i, std::array<double, 1>& e) {
+        if (!(mask[i] & 4)) e[0] += lat.mass[i] * gz * (u.z[i] - 0.5 * dt * v.z[i]);
+    })[0];
 }
 
 double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v) {

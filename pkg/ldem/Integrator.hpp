@@ -3,9 +3,10 @@
 //   M x'' + D_f M x' + F_int(x) = P(t)
 //   v(n+1/2) = [ (1 - D_f dt/2) v(n-1/2) + dt (P - F_int)/m ] / (1 + D_f dt/2)
 //   x(n+1)   = x(n) + dt v(n+1/2)
-// Here f is the force of the bars on the nodes (f = -F_int) and P = 0: the
-// specimen is loaded only through its prescribed degrees of freedom, which
-// the integrator leaves alone (Loading sets them).
+// Here f is the force of the bars on the nodes (f = -F_int) and P is the
+// free DOFs' weight, m g_z along z (none unless the run asks for gravity); the
+// specimen is otherwise loaded only through its prescribed degrees of freedom,
+// which the integrator leaves alone (Loading sets them).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -28,6 +29,7 @@ struct CentralDifference {
     double dt, Df, a, b;
     Field3* mean = nullptr;  // vbar per node, or none (the damping on absolute velocity)
     double filter = 0;       // dt/tau
+    double gz = 0;           // the body force per unit mass along z [m/s^2]: -g under gravity (Simulation.cpp)
     CentralDifference(double dt_, double Df_)
         : dt(dt_), Df(Df_), a((1 - 0.5 * Df_ * dt_) / (1 + 0.5 * Df_ * dt_)), b(dt_ / (1 + 0.5 * Df_ * dt_)) {}
 };
@@ -47,6 +49,12 @@ double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<doub
 // sum D_f m (vbar - w) vbar dt (of either sign: the mean may move faster than the node).
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
                     const Field3& f, Field3& u, Field3& v);
+
+// The work the weight of the free z DOFs did from rest, sum m g_z (x(n) + x(n-1))/2
+// = sum m g_z (u - dt v/2) with u = x(n), v = v(n-1/2): the weight's share of
+// f (x(n+1) - x(n-1))/2 summed over the steps (it telescopes: g_z constant).
+double weightWork(const Lattice& lat, const std::vector<std::uint8_t>& mask, double gz, double dt, const Field3& u,
+                  const Field3& v);
 
 // Sum of 1/2 m v^2 over the DOFs not set in mask, of the owned nodes (Slab.hpp).
 double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v);

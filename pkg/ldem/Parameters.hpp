@@ -171,6 +171,9 @@
 // The run: the dynamic parts' lists above, in the table's order, and the choice of the stop.
 #define LDEM_RUN_PARAMETERS(X)                                                                               \
     X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")   \
+    X(double, gravity, "gravity", 0.0, "m/s^2", Domain::closed(0, 100),                                      \
+      "the specimen's weight: a body force m g along -z on every free DOF, rising over the drive's smooth "    \
+      "start (9.81: a beam lying on its supports); its work counts as external work")                        \
     LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
     LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                           \
     X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}),\

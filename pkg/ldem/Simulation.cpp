@@ -64,6 +64,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     }
     setup.recordEvery = recordEvery_;
     drive_ = makeDrive(load_, mat_, setup, dampings_);
+    weightRise_ = fixedDrive(load_, setup).program().rampTime;
     loadLoss_ = LoadLossDetector(splitWindow_, run_.stopFraction);
     stops_ = makeStops(run_);
 
@@ -86,8 +87,36 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
     loadedSlot_ = ownedLayerSlots(lat_, *loaded_);
-    cd_ = nodeUpdate(dampings_, dt_);
+    cd_ = nodeRule();
     layerDamping_.assign(lat_.numLayers(), 0.0);
+}
+
+// The node update of the dampings, with the free DOFs' weight under gravity (along -z).
+CentralDifference Simulation::nodeRule() {
+    CentralDifference cd = nodeUpdate(dampings_, dt_);
+    cd.gz = gz_;
+    return cd;
+}
+
+// g_z of step n: the weight rises over the drive's smooth start as (1 - cos(pi t/t_r))/2,
+// t = n dt. Laid on its supports at once, a specimen would ring in its
+// fundamental by its whole static sag (a beam's load by +-100 N on a 1 kN
+// peak, decaying as 1/(zeta omega_1)); over two periods the ringing left is
+// about 1/((omega_1 t_r/pi)^2 - 1) = 7 % of the sag.
+double Simulation::weightAt(std::int64_t n) const {
+    return -run_.gravity * smoothRampVelocity(double(n) * dt_, weightRise_);
+}
+
+// The weight for the step about to be taken (step_). Its work, sum_n m g_n
+// (x(n+1) - x(n-1))/2, summed by parts: g_N Y_N - sum_n (g_{n+1} - g_n) Y_n
+// with Y_n = sum m (x(n+1) + x(n))/2, the last step's term being weightWork
+// (measure); each change of g puts its term into the external work here,
+// where u - dt v/2 is (x(n+1) + x(n))/2.
+void Simulation::weighNextStep() {
+    const double gz = weightAt(step_);
+    if (gz == gz_) return;
+    externalWork_ -= weightWork(lat_, pre_.mask, gz - gz_, dt_, u_, v_);
+    gz_ = cd_.gz = gz;
 }
 
 std::vector<double> Simulation::fractureEnergyField() const {
@@ -200,19 +229,22 @@ CurvePoint Simulation::measure() const {
     const BarEnergies e = barEnergies(lat_, u_, law_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
-    p.externalWork = externalWork_;
+    // The weight's work is the drive's companion: the external work (Integrator.hpp, weightWork).
+    p.externalWork = externalWork_ + weightWork(lat_, pre_.mask, gz_, dt_, u_, v_);
     // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
     p.damping = dampingWork_ + ownedLayerSum([&](int m) { return sumOver(dampings_, [m](const auto& d) { return d.closingWork(m); }); });
     return p;
 }
 
 void Simulation::step() {
+    weighNextStep();
     // One visit of the law per step: the layered pass is compiled for it.
     layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
     finishStep();
 }
 
 void Simulation::advance() {
+    weighNextStep();
 #pragma omp parallel for schedule(static)
     for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
     finishStep();
@@ -339,7 +371,8 @@ void Simulation::restore(const Checkpoint& c) {
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(c.parts[k++].second); }, r);
     std::apply([&](auto&... d) { (d.setState(c.parts[k++].second), ...); }, dampings_);
     kineticAtPeak_.setState(c.parts[k++].second);
-    cd_ = nodeUpdate(dampings_, dt_);
+    gz_ = step_ > 0 ? weightAt(step_ - 1) : 0.0;  // the last step's
+    cd_ = nodeRule();
     if (openingControl()) opening_ = probe(meas_.probes[meas_.control]);
     progress_ = c.progress;
     progress_.summary.stopReason.clear();  // a finished run set back to its last record goes on
@@ -355,7 +388,7 @@ void Simulation::recordParts(const CurvePoint& p) {
     const DriveRecord dr{p, s, !lossBefore && s.loadLoss.reached(), dt_};
     std::visit([&](auto& d) { d.record(dr); }, drive_);
     recordDampings(dampings_, DampingRecord{s, v_});
-    cd_ = nodeUpdate(dampings_, dt_);  // (relative damping: from the load loss on)
+    cd_ = nodeRule();  // (relative damping: from the load loss on)
     const std::function<bool()> joined = [this] { return facesJoined(); };
     StopRecord sr{p, s, lost, joined};
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.record(sr); }, r);

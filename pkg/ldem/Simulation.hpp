@@ -100,7 +100,7 @@ public:
 
     // Sets dt without the stability check: for tests of the instability
     // detector and for studies of the stability limit itself.
-    void forceTimeStep(double dt) { dt_ = dt, cd_ = nodeUpdate(dampings_, dt_); }
+    void forceTimeStep(double dt) { dt_ = dt, cd_ = nodeRule(); }
 
     const Lattice& lattice() const { return lat_; }
     const Prescribed& prescribed() const { return pre_; }
@@ -167,6 +167,9 @@ private:
     void recordParts(const CurvePoint& p);
     std::string stopReason(const CurvePoint& p) const;
     double advanceNodes(int layer);
+    CentralDifference nodeRule();
+    double weightAt(std::int64_t n) const;
+    void weighNextStep();
     double ownedLayerSum(const std::function<double(int)>& ofLayer) const;  // in layer order, over the ranks
     // Sum over the nodes of a group of a force component along the measured direction.
     double groupForce(const std::vector<std::int32_t>& nodes) const;
@@ -197,6 +200,7 @@ private:
     std::vector<std::int32_t> preSlot_, supportSlot_, loadedSlot_;  // owned layer (- ownBegin) of each prescribed DOF's node, support and loaded node; -1 if not owned
     std::vector<double> stepPartials_;  // finishStep's per-layer sums, kept between steps
     double externalWork_ = 0, dampingWork_ = 0;
+    double gz_ = 0, weightRise_ = 0;  // the weight's g_z in the last step; the time it rises over [s]
     double stressBefore_ = 0;  // supportStress() of the state the last step started from
     // The load cells: sums of the support's and the loaded group's stresses over
     // the states since the last record, and how many (measure()).

@@ -9,27 +9,66 @@ import math
 import numpy as np
 import pytest
 
-from ldem.study import beam_diagnosis, beams, concrete
+from ldem.study import beam_diagnosis, beams, concrete, mc2010
 
 
 def test_mc2010_fracture_energy_of_the_gregoire_concrete():
     # fib MC2010 eq. 5.1-9: 73 x 42.3^0.18 N/m
-    assert concrete.mc2010_fracture_energy(42.3e6) == pytest.approx(73 * 42.3 ** 0.18, rel=1e-12)
-    assert concrete.mc2010_fracture_energy(42.3e6) == pytest.approx(143.24, abs=0.01)
+    assert mc2010.mc2010_fracture_energy(42.3e6) == pytest.approx(73 * 42.3 ** 0.18, rel=1e-12)
+    assert mc2010.mc2010_fracture_energy(42.3e6) == pytest.approx(143.24, abs=0.01)
     with pytest.raises(ValueError, match="f_c must be positive"):
-        concrete.mc2010_fracture_energy(0.0)
+        mc2010.mc2010_fracture_energy(0.0)
+
+
+def test_mc2010_properties_from_the_compressive_strength_alone():
+    """fib MC2010 from f_cm: E_ci = 21.5 GPa (f_cm/10)^(1/3); f_ctm = 0.30 f_ck^(2/3)
+    up to C50, 2.12 ln(1 + f_cm/10) above, f_ck = f_cm - 8 MPa; G_F = 73 f_cm^0.18."""
+    low = mc2010.mc2010_from_compressive_strength(29.0e6)  # f_ck 21 MPa
+    assert low["E"] == pytest.approx(21.5e9 * 2.9 ** (1 / 3), rel=1e-12)
+    assert low["E"] == pytest.approx(30.66e9, rel=1e-3)
+    assert low["f_t"] == pytest.approx(0.30 * 21.0 ** (2 / 3) * 1e6, rel=1e-12)
+    assert low["f_t"] == pytest.approx(2.284e6, rel=1e-3)
+    assert low["G_F"] == mc2010.mc2010_fracture_energy(29.0e6) and low["nu"] == 0.2
+    assert low["sources"]["f_t"].endswith("5.1-3a, f_ctm")
+    high = mc2010.mc2010_from_compressive_strength(58.9e6)  # f_ck 50.9 MPa: above C50
+    assert high["f_t"] == pytest.approx(2.12 * math.log(1 + 5.89) * 1e6, rel=1e-12)
+    assert high["sources"]["f_t"].endswith("5.1-3b, f_ctm")
+    # the two branches meet near C50 (within 0.5 %)
+    below, above = (mc2010.mc2010_from_compressive_strength(f)["f_t"] for f in (58.0e6, 58.01e6))
+    assert above == pytest.approx(below, rel=5e-3)
+    with pytest.raises(ValueError, match="f_ck"):
+        mc2010.mc2010_from_compressive_strength(7e6)
+
+
+def test_the_command_line_without_E_or_f_c_says_what_is_missing(cli):
+    p = cli("study", "calibration", "--nu", "0.2", "--ft", "3.9e6", "--L0", "0.01")
+    assert p.returncode == 2 and p.stderr == "ldem study: error: give --E, or --fc for fib MC2010's\n", p.stderr
+
+
+def test_the_prism_is_the_standard_one_where_L0_divides_it_and_the_nearest_whole_modules_else():
+    """50 x 50 x 100 mm at 5 and 12.5 mm; at the Malvar-Warren beams' 12.75 mm
+    (102 mm / 8) 4 x 4 x 8 modules, 51 x 51 x 102 mm, which builds (50 mm is
+    not a multiple of 12.75 mm: the shape refuses it)."""
+    assert concrete.prism_size(0.005) == concrete.PRISM == concrete.prism_size(0.0125)
+    assert concrete.prism_size(0.01275) == pytest.approx((0.051, 0.051, 0.102), rel=1e-12)
+    assert concrete.prism_size(0.06) == pytest.approx((0.12, 0.12, 0.12), rel=1e-12)  # at least 2 modules
+    material = concrete.lattice_material(30e9, 0.2, 1e-4, 100.0)
+    test = concrete.prism(material, 0.01275, 1)  # builds
+    assert test.description["shape"]["size"] == pytest.approx([0.051, 0.051, 0.102], rel=1e-12)
+    assert test.build.n == (4, 4, 8)
+    assert test.description["measure"]["area"] == pytest.approx(0.051 ** 2, rel=1e-12)
 
 
 def test_the_gauges_read_the_elastic_constants_of_a_known_curve():
     """A linear rising branch of E = 30 GPa, nu = 0.2, then a drop: the fit
     takes 20-60 % of the peak and ignores the softening."""
-    w, _, h = concrete.PRISM
+    w, _, h = concrete.prism_size(0.005)
     eps = np.linspace(0, 1e-4, 101)
     stress = 30e9 * eps
     eps = np.concatenate([eps, [1.1e-4, 1.2e-4]])
     stress = np.concatenate([stress, [1e6, 0.0]])  # softening rows, off the line
     curve = {"stress_MPa": stress / 1e6, "axial_m": eps * h / 2, "lateral_m": -0.2 * eps * w}
-    E, nu = concrete.elastic_constants(curve, stress.max() / 1e6)
+    E, nu = concrete.elastic_constants(curve, stress.max() / 1e6, 0.005)
     assert E == pytest.approx(30e9, rel=1e-9) and nu == pytest.approx(0.2, rel=1e-9)
 
 
@@ -57,7 +96,7 @@ def test_gregoire_concrete_calibrated_on_a_coarse_prism_meets_its_targets_and_is
     r = json.loads(out.read_text())
     assert p.stdout.endswith(out.read_text()) and "round 1: E " in p.stdout and r["seeds"] == [1]
     m, t = r["material"], r["target"]
-    assert t["G_F"] == pytest.approx(concrete.mc2010_fracture_energy(42.3e6)) and m["Gf_mean"] == t["G_F"]
+    assert t["G_F"] == pytest.approx(mc2010.mc2010_fracture_energy(42.3e6)) and m["Gf_mean"] == t["G_F"]
     for k in ("E", "f_t"):
         assert r["measured"][k] == pytest.approx(t[k], rel=concrete.TOLERANCE), k
     assert (m["law"], m["Gf_ratio"], m["kink_stress"], m["Gf_cv"], m["nu"]) == ("bilinear", 0.4, 0.2, 1.0, 0.21)

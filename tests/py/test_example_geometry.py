@@ -46,6 +46,10 @@ STATED = {
     "l_panel.toml": dict(size=(0.5, 0.1, 0.5), cutout=((0.25, 0.5), (0.0, 0.1), (0.0, 0.25)),
                          groups={"base": dict(x=(0.0, 0.25), z=(0.0, 0.0)),
                                  "load": dict(x=(0.46, 0.48), z=(0.25, 0.25))}),
+    # Malvar and Warren (1988) at L0 = 10.2 mm: 102 x 102 mm, 81 modules long (826.2 mm), supports
+    # 77 modules (785.4 mm) apart centred on mid-span (x = 413.1 mm), a platen and a notch 51 mm deep
+    # one module (10.2 mm) wide there.
+    "malvar_warren_beam.toml": beam(0.8262, 0.102, 0.102, (0.0204, 0.8058), 0.4131, 0.0102, (0.051, 0.0102, 0.4131)),
     # a cylinder D = 0.1 m, 0.02 m long along y, between strips 0.01 m wide along its length.
     "brazilian.toml": dict(size=(0.1, 0.02, 0.1), groups={"bottom": dict(x=(0.045, 0.055), z=(0.0, 0.0)),
                                                           "top": dict(x=(0.045, 0.055), z=(0.1, 0.1))}),

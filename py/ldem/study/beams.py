@@ -38,7 +38,8 @@ from typing import Callable, List, Sequence, Tuple
 
 from .. import io
 from ..markdown import num_cell
-from .concrete import mc2010_fracture_energy, prism as tension_prism
+from .concrete import prism as tension_prism
+from .mc2010 import mc2010_fracture_energy
 from ..specimen import SpecimenTest
 from .cases import Named
 from .executors import run_cases

@@ -24,24 +24,34 @@ import numpy as np
 
 from .. import io
 from ..specimen import SpecimenTest
+from .mc2010 import lab_values, mc2010_fracture_energy
 from .options import parameter_option, seed_count
 from .registry import Study, register
 
 PRISM = (0.05, 0.05, 0.10)  # width, thickness, height [m]
-AREA = PRISM[0] * PRISM[1]
 PRISM_RATE = 0.05  # strain rate [1/s]: the beams' calibration's
 
 
+def prism_size(L0: float) -> tuple:
+    """The prism's (width, thickness, height) [m] at module L0: each side of
+    PRISM rounded to the nearest whole number of modules, at least 2. The
+    prism is built at the structure's own L0, and a structure's module need
+    not divide 50 mm: the Malvar-Warren beams (D = 102 mm, L0 = D/8 = 12.75 mm)
+    are calibrated on a prism of 4 x 4 x 8 modules, 51 x 51 x 102 mm. Where L0
+    divides the sides (5, 10, 12.5 mm, ...) it is PRISM itself."""
+    return tuple(max(2, round(side / L0)) * L0 for side in PRISM)
+
+
 def prism(material: dict, L0: float, seed: int, stop_at: str = "load_loss") -> SpecimenTest:
-    """The direct tension prism: lower face held, upper face pulled; the gauges
-    'axial' and 'lateral' at mid-height. stop_at 'load_loss' (enough for E, nu
-    and f_t) or 'separation' (for G_F)."""
-    w, t, h = PRISM
+    """The direct tension prism (prism_size): lower face held, upper face
+    pulled; the gauges 'axial' and 'lateral' at mid-height. stop_at
+    'load_loss' (enough for E, nu and f_t) or 'separation' (for G_F)."""
+    w, t, h = prism_size(L0)
     return SpecimenTest({
         "title": f"direct tension prism {w * 1e3:g} x {t * 1e3:g} x {h * 1e3:g} mm, eps_p {material['eps_p']:.4g}",
         "shape": {"kind": "box", "L0": L0, "size": [w, t, h]},
         "groups": {"bottom": {"face": "z-", "fix": ["x", "y", "z"]}, "top": {"face": "z+", "drive": {"z": 1.0}}},
-        "measure": {"support": "bottom", "loaded": "top", "area": AREA, "gauge_length": h, "ligament": AREA,
+        "measure": {"support": "bottom", "loaded": "top", "area": w * t, "gauge_length": h, "ligament": w * t,
                     "probes": {"axial": {"a": [w / 2, t / 2, h / 4], "b": [w / 2, t / 2, 3 * h / 4], "direction": "z"},
                                "lateral": {"a": [0.0, t / 2, h / 2], "b": [w, t / 2, h / 2], "direction": "x"}}},
         "material": dict(material), "loading": {"strain_rate": PRISM_RATE},
@@ -49,10 +59,11 @@ def prism(material: dict, L0: float, seed: int, stop_at: str = "load_loss") -> S
                 "threads": 1}})
 
 
-def elastic_constants(curve: dict, peak_MPa: float) -> tuple:
-    """(E [Pa], nu) from the gauges, fitted on the rows of the rising branch
-    between 20 % and 60 % of the peak (least-squares slopes)."""
-    w, t, h = PRISM
+def elastic_constants(curve: dict, peak_MPa: float, L0: float) -> tuple:
+    """(E [Pa], nu) from the gauges of the prism at module L0, fitted on the
+    rows of the rising branch between 20 % and 60 % of the peak (least-squares
+    slopes)."""
+    w, t, h = prism_size(L0)
     s = np.asarray(curve["stress_MPa"]) * 1e6
     first_peak = int(np.argmax(s))
     rows = np.arange(len(s)) <= first_peak
@@ -78,9 +89,10 @@ def measure(material: dict, L0: float, seeds: Sequence[int] = (1, 2, 3), stop_at
     for seed in seeds:
         r = prism(material, L0, seed, stop_at).run()
         s = r.summary
-        E, nu = elastic_constants(r.curve, s["peak_stress_MPa"])
+        E, nu = elastic_constants(r.curve, s["peak_stress_MPa"], L0)
+        w, t, _ = prism_size(L0)
         runs.append({"seed": seed, "E": E, "nu": nu, "f_t": s["peak_stress_MPa"] * 1e6,
-                     "G_F": s["U_num_J"] / AREA if s["separated"] else None,
+                     "G_F": s["U_num_J"] / (w * t) if s["separated"] else None,
                      "stop": s["stop_reason"], "energy_balance_error": s["energy_balance_error"]})
         log(f"  prism seed {seed}: E {E / 1e9:.2f} GPa, nu {nu:.3f}, f_t {runs[-1]['f_t'] / 1e6:.3f} MPa"
             + (f", G_F {runs[-1]['G_F']:.1f} N/m" if s["separated"] else "")
@@ -98,14 +110,6 @@ GF_INITIAL_SHARE = 0.4  # G_f / G_F: Bažant & Becq-Giraudon (2002), mean G_F / 
 KINK_STRESS = 0.2  # sigma_k / f_t of the bilinear law: fib MC2010 eq. 5.1-10
 GF_CV, C_A = 1.0, 0.1385  # the study's random field and fracture area (LDEM_SPEC section 6)
 TOLERANCE, ROUNDS = 0.01, 5  # the prism's E and f_t within 1 % of the targets, at most 5 rounds
-
-
-def mc2010_fracture_energy(f_c: float) -> float:
-    """G_F [N/m] from the mean compressive strength f_c [Pa]: fib Model Code
-    2010 eq. 5.1-9, G_F = 73 f_cm^0.18 (f_cm in MPa)."""
-    if f_c <= 0:
-        raise ValueError(f"f_c must be positive (got {f_c:g} Pa)")
-    return 73.0 * (f_c / 1e6) ** 0.18
 
 
 def lattice_material(E: float, nu: float, eps_p: float, G_F: float, rho: float = 2400.0) -> dict:
@@ -214,22 +218,27 @@ def work_of_fracture(curve: dict) -> float:
 
 
 def add_arguments(c) -> None:
-    lab = "; the concrete's, as the laboratory reports it"
-    parameter_option(c, "E", "--E", lab, default=None, required=True)
-    parameter_option(c, "nu", "--nu", lab, default=None, required=True)
-    c.add_argument("--ft", type=float, required=True, help="direct tensile strength [Pa]")
-    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa] (for G_F if not given)")
+    lab = "; the concrete's, as the laboratory reports it (default: fib MC2010's from --fc)"
+    parameter_option(c, "E", "--E", lab, default=None)
+    parameter_option(c, "nu", "--nu", lab, default=None)
+    c.add_argument("--ft", type=float, default=None, help="direct tensile strength [Pa] (default: fib MC2010's "
+                                                          "f_ctm from --fc)")
+    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa]: for what else is not "
+                                                          "given (mc2010_from_compressive_strength)")
     c.add_argument("--GF", type=float, default=None, help="total fracture energy [N/m] (default: fib MC2010's)")
-    parameter_option(c, "rho", "--rho", lab)
+    parameter_option(c, "rho", "--rho", "; the concrete's")
     parameter_option(c, "L0", "--L0", "; the module of the structure to model", default=None, required=True)
     c.add_argument("--seeds", type=int, default=3, help="prisms per round (seeds 1..N)")
     c.add_argument("--out", default="", metavar="FILE", help="write the result here (JSON)")
 
 
 def cmd_calibration(args) -> int:
-    """Prints each prism and round, then the result (JSON), also written to --out."""
-    result = calibrate(args.E, args.nu, args.ft, args.fc, args.GF, args.rho, args.L0,
+    """Prints each prism and round, then the result (JSON), also written to --out.
+    What is not given comes from fib MC2010 and --fc (the result's "sources")."""
+    given, sources = lab_values(args.E, args.nu, args.ft, args.fc, args.GF)
+    result = calibrate(given["E"], given["nu"], given["f_t"], args.fc, args.GF, args.rho, args.L0,
                        range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
+    result["sources"] = sources
     text = json.dumps(result, indent=1)
     print(text)
     if args.out:
@@ -238,7 +247,7 @@ def cmd_calibration(args) -> int:
 
 
 register(Study("calibration", "the lattice material of a concrete from what a laboratory reports (E, nu, f_t, "
-                              "f_c or G_F), by the virtual prism", add_arguments, cmd_calibration,
+                              "f_c or G_F; or f_c alone, with fib MC2010), by the virtual prism", add_arguments, cmd_calibration,
                "Runs the virtual direct tension prism (seeds 1..N, to its load loss) until its E and f_t are "
                "within 1 % of the targets (docs/calibration.md); use the parameters under [material] of a "
                "specimen file with the same L0."))

@@ -9,8 +9,10 @@ its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed
 
     ldem study validation NAME [--calibrate-only] [--seeds 6] [--jobs J] [--out OUT] [--root .]
 
-NAME: l_panel (Winkler et al. 2001) or eccentric_notch_beam (García-Álvarez et
-al. 2012); OUT: ROOT/results/validation/NAME. Finished cases are not run again."""
+NAME: l_panel (Winkler et al. 2001), eccentric_notch_beam (García-Álvarez et
+al. 2012), malvar_warren_s1 or _s2 (Malvar and Warren 1988, from f_c alone;
+with _weight: lying on the supports under gravity); OUT:
+ROOT/results/validation/NAME. Finished cases are not run again."""
 from __future__ import annotations
 
 import json
@@ -24,7 +26,8 @@ import numpy as np
 
 from .. import io
 from ..specimen import SpecimenTest
-from .concrete import calibrate
+from .concrete import calibrate, slope
+from .mc2010 import lab_values
 from .beams import PastThePeak
 from .cases import Named
 from .executors import run_cases
@@ -36,10 +39,16 @@ from .tables import mean_cv
 @dataclass(frozen=True)
 class Blind:
     file: str  # the specimen file, from the repository's root
-    lab: Dict[str, float] = field(default_factory=dict)  # calibrate's E, nu, f_t, G_F (and f_c), rho
+    # what the laboratory reported: E, nu, f_t, G_F, f_c, rho; what is missing
+    # comes from fib MC2010 and f_c (mc2010.lab_values), rho is 2400 if not given
+    lab: Dict[str, float] = field(default_factory=dict)
     x: str = "mean_strain"  # the curve's abscissa: a column of the run's curve
     x_label: str = ""
     x_scale: float = 1.0  # to the unit of x_label
+    past_the_peak: bool = True  # stop each run past its peak (PastThePeak); else at the file's final strain
+    gravity: float = 0.0  # [m/s^2]: the specimen lies on its supports under its own weight
+    from_elastic_zero: bool = False  # x from where the elastic line crosses zero load (elastic_zero)
+    calibration: str = ""  # the entry whose material.json this one uses (the same concrete)
 
 
 SPECIMENS = {
@@ -51,32 +60,65 @@ SPECIMENS = {
                                   {"E": 33.8e9, "nu": 0.2, "f_t": 3.5e6, "G_F": 125.0, "rho": 2346.0},
                                   "cmod_m", "CMOD over 20 mm [mm]", 1e3),
 }
-COLUMNS = ["specimen", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN", "x_at_peak", "x_label", "calibration"]
+# Malvar and Warren (1988): f_c alone; the curve to a load-point deflection of 1.5 mm
+for _series, _fc in (("s1", 29.0e6), ("s2", 58.9e6)):
+    _beam = dict(file="examples/malvar_warren_beam.toml", lab={"f_c": _fc}, x_label="load-point deflection [mm]",
+                 x_scale=102.0, past_the_peak=False, from_elastic_zero=True)  # gauge D = 0.102 m, to mm
+    SPECIMENS[f"malvar_warren_{_series}"] = Blind(**_beam)
+    SPECIMENS[f"malvar_warren_{_series}_weight"] = Blind(**_beam, gravity=9.81, calibration=f"malvar_warren_{_series}")
+COLUMNS = ["specimen", "peak_load_kN", "cv", "seeds", "min_kN", "max_kN", "x_at_peak", "x_label", "calibration",
+           "weight_kN", "x_zero"]
 
 
 class Stopped(Named):
-    """A specimen file's run as a study case s{seed}, stopped past its peak (PastThePeak)."""
+    """A specimen file's run as a study case s{seed}, stopped past its peak
+    (PastThePeak) or at the file's final strain, under gravity if asked."""
 
-    def __init__(self, path: str, material: dict, seed: int):
-        test = SpecimenTest.from_file(path, overrides=dict(material, seed=seed, threads=1))
+    def __init__(self, path: str, material: dict, seed: int, blind: Blind):
+        test = SpecimenTest.from_file(path, overrides=dict(material, seed=seed, threads=1, gravity=blind.gravity))
         super().__init__(test, f"s{seed}", ["curve", "summary"] + (["figures"] if seed == 1 else []))
+        self.past_the_peak = blind.past_the_peak
 
     def run(self, observers=(), simulation=None, previous_rows=()):
-        return self.test.run(list(observers) + [PastThePeak(previous_rows)], simulation, previous_rows)
+        stop = [PastThePeak(previous_rows)] if self.past_the_peak else []
+        return self.test.run(list(observers) + stop, simulation, previous_rows)
+
+
+def free_weight(test: SpecimenTest, gravity: float) -> float:
+    """[N] The weight the supports and the platen carry: m g of the nodes whose z
+    is free (the held and driven nodes' own weight is not in their reactions)."""
+    mass = np.asarray(test.simulation().lattice.mass)
+    node, dim, _ = test.build.prescribed
+    return gravity * float(mass.sum() - mass[np.unique(node[dim == 2])].sum())
+
+
+def elastic_zero(x: np.ndarray, load: np.ndarray) -> float:
+    """Where the elastic line crosses zero load: load = k (x - x0) fitted on the
+    rising branch between 20 % and 60 % of the peak. Under its weight a beam
+    already bends before the test's zero (the platen, held at 0, carries part
+    of it): by superposition the test's deflection is x - x0."""
+    rising = np.arange(len(load)) <= int(np.argmax(load))
+    band = rising & (load > 0.2 * load.max()) & (load < 0.6 * load.max())
+    return float(x[band].mean() - load[band].mean() / slope(x[band], load[band]))
 
 
 def material(root: str, name: str, out: str, log: Callable[[str], None] = print) -> dict:
-    """The calibration for the specimen's concrete at its file's L0 (kept in OUT/material.json)."""
+    """The calibration for the specimen's concrete at its file's L0 (kept in
+    OUT/material.json; an entry with `calibration` uses that entry's, beside OUT)."""
+    b = SPECIMENS[name]
+    if b.calibration:
+        return material(root, b.calibration, os.path.join(os.path.dirname(os.path.abspath(out)), b.calibration), log)
     path = os.path.join(out, "material.json")
     if os.path.exists(path):
         with open(path) as f:
             return json.load(f)
-    b = SPECIMENS[name]
     L0 = SpecimenTest.from_file(os.path.join(root, b.file)).build.L0
     lab = dict(b.lab)
-    rho = lab.pop("rho", 2400.0)
-    result = calibrate(lab.pop("E"), lab.pop("nu"), lab.pop("f_t"), lab.pop("f_c", None),
-                                lab.pop("G_F", None), rho, L0, log=log)
+    given, sources = lab_values(lab.get("E"), lab.get("nu"), lab.get("f_t"), lab.get("f_c"), lab.get("G_F"))
+    rho = lab.get("rho", 2400.0)
+    sources["rho"] = "given" if "rho" in lab else "2400 kg/m^3, normal-weight concrete (assumed)"
+    result = calibrate(given["E"], given["nu"], given["f_t"], lab.get("f_c"), lab.get("G_F"), rho, L0, log=log)
+    result["sources"] = sources
     io.prepare_dir(out)
     io.write_text(path, json.dumps(result, indent=1) + "\n")
     return result
@@ -87,28 +129,39 @@ def predict(root: str, name: str, out: str, seeds: int = 6, jobs: int = 1,
     """Calibrates, runs the seeds not yet run, writes the tables and figures; returns the prediction's row."""
     if name not in SPECIMENS:
         raise ValueError(f"unknown specimen {name!r} (known: {', '.join(SPECIMENS)})")
-    m = material(root, name, out, log)["material"]
-    path = os.path.join(root, SPECIMENS[name].file)
-    run_cases([Stopped(path, m, s) for s in range(1, seeds + 1)], out, jobs=jobs, log=log)
-    return write_prediction(out, name, seeds)
-
-
-def write_prediction(out: str, name: str, seeds: int) -> dict:
     b = SPECIMENS[name]
-    peaks, curves, at = [], {}, []
+    m = material(root, name, out, log)["material"]
+    path = os.path.join(root, b.file)
+    run_cases([Stopped(path, m, s, b) for s in range(1, seeds + 1)], out, jobs=jobs, log=log)
+    weight = free_weight(SpecimenTest.from_file(path, overrides=m), b.gravity) if b.gravity else 0.0
+    return write_prediction(out, name, seeds, weight)
+
+
+def write_prediction(out: str, name: str, seeds: int, weight: float = 0.0) -> dict:
+    """predictions.csv, curves.csv, the figures. Under gravity (weight [N] > 0)
+    the load is the supports' reaction less the weight; with from_elastic_zero
+    the abscissa starts at the elastic line's zero (elastic_zero): what the
+    test, zeroed with the beam lying on its supports, reads (without gravity
+    it takes out the smooth start's lag)."""
+    b = SPECIMENS[name]
+    peaks, curves, at, zeros = [], {}, [], []
     for seed in range(1, seeds + 1):
         case = os.path.join(out, "cases", f"s{seed}")
         s = io.read_summary(os.path.join(case, io.tables.SUMMARY))
         c = io.read_curve(os.path.join(case, io.tables.CURVE))
-        load = np.asarray(c["stress_MPa"]) * 1e3  # F [MN] -> kN
+        load = np.asarray(c["stress_MPa"]) * 1e3 - weight * 1e-3  # F [MN] -> kN
         x = np.asarray(c[b.x]) * b.x_scale
-        peaks.append(s["peak_stress_MPa"] * 1e3)
+        if b.from_elastic_zero:
+            zeros.append(elastic_zero(x, load))
+            x = x - zeros[-1]
+        peaks.append(s["peak_stress_MPa"] * 1e3 - weight * 1e-3)
         at.append(float(x[int(np.argmax(load))]))
         curves[f"x_s{seed}"], curves[f"load_kN_s{seed}"] = x, load
     mean, cv = mean_cv(peaks)
     row = {"specimen": name, "peak_load_kN": mean, "cv": cv,
            "seeds": len(peaks), "min_kN": min(peaks), "max_kN": max(peaks), "x_at_peak": statistics.mean(at),
-           "x_label": b.x_label, "calibration": "docs/calibration.md"}
+           "x_label": b.x_label, "calibration": "docs/calibration.md", "weight_kN": weight * 1e-3,
+           "x_zero": statistics.mean(zeros) if zeros else 0.0}
     io.write_table(os.path.join(out, "predictions.csv"), [row], COLUMNS)
     n = max(len(v) for v in curves.values())
     io.write_table(os.path.join(out, "curves.csv"),
