@@ -50,9 +50,10 @@ double advanceNodes(std::int32_t first, std::int32_t end, const std::vector<doub
 double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, const std::vector<std::uint8_t>& mask,
                     const Field3& f, Field3& u, Field3& v);
 
-// The work the weight of the free z DOFs did from rest, sum m g_z (x(n) + x(n-1))/2
-// = sum m g_z (u - dt v/2) with u = x(n), v = v(n-1/2): the weight's share of
-// f (x(n+1) - x(n-1))/2 summed over the steps (it telescopes: g_z constant).
+// sum m g_z (x(n) + x(n-1))/2 = sum m g_z (u - dt v/2) over the free z DOFs,
+// u = x(n), v = v(n-1/2): the work a constant weight g_z did from rest (its
+// share of f (x(n+1) - x(n-1))/2 telescopes). While the weight changes,
+// Simulation::weighNextStep adds the rest of the sum by parts.
 double weightWork(const Lattice& lat, const std::vector<std::uint8_t>& mask, double gz, double dt, const Field3& u,
                   const Field3& v);
 
