@@ -10,6 +10,7 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams size-effect [--out OUT]                        size_effect.md|csv|png, cracks.png
     ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
+    ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
 
 Cases are resumed and run side by side as every study's (J at a time, one
 thread each); a finished case is not run again."""
@@ -27,6 +28,7 @@ from .beams import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, cal
 from .concrete import calibrate as calibrate_concrete
 from .options import add_seeds, parameter_option, parse_names, seed_count
 from .registry import Study, register
+from .whole_curves import run as run_whole_curves
 
 OUT = os.path.join("results", "beams", "gregoire2013")
 CALIBRATED_NOTE = ("The nine beams with the concrete of the calibration procedure (docs/calibration.md: "
@@ -118,6 +120,14 @@ def calibrated(args) -> None:
     print(text)
 
 
+def whole(args) -> None:
+    """The measured beams' whole curves with the calibrated concrete (OUT/../calibrated/material.json)."""
+    material = os.path.join(os.path.dirname(os.path.abspath(args.out)), "calibrated", "material.json")
+    if not os.path.isfile(material):
+        raise ValueError(f"{material} not found: `ldem study beams calibrated` writes it")
+    print(run_whole_curves(args.out, material, args.data or default_data(args.out), seed_count(args), args.jobs))
+
+
 def _jobs(p, note: str = "") -> None:
     p.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each" + note)
 
@@ -165,6 +175,12 @@ def add_arguments(b) -> None:
     q.add_argument("--seeds-200", type=int, default=2, help="specimens of the D = 200 mm beams")
     _jobs(q)
     _data(q)
+    w = command("whole-curves", whole, "the measured beams under a clip gauge's servo to 4.4 times the measured "
+                                       "CMOD at the peak, the calibrated concrete: OUT/whole_curves/",
+                os.path.join(OUT, "whole_curves"))
+    add_seeds(w, "beam")
+    _jobs(w)
+    _data(w)
 
 
 def cmd_beams(args) -> int:
