@@ -25,8 +25,8 @@ from typing import Callable, Dict, List, Tuple
 import numpy as np
 
 from .. import io
-from .beam_comparison import NAMES, _by_beam, default_data, measured_curve
-from .beams import Beam, Variant, calibrated_variant
+from .beam_comparison import NAMES, _by_beam, measured_curve
+from .beams import L0, Beam, Variant, calibrated_variant
 from .curve_quantities import MULTIPLES
 from .curve_report import figure, summarize, table_lines
 from .executors import run_cases
@@ -49,11 +49,13 @@ class ToOpening:
 
 class WholeCurve(Beam):
     """A measured beam under the gauge's servo, to ToOpening; its curve and
-    summary only (the report draws the figures)."""
+    summary only (the report draws the figures). gauge [m] (0: GAUGES') and L0
+    [m]: another beam's (the tests' tiny ones)."""
 
     def __init__(self, D: float, notch: float, material: dict, seed: int, cmod_at_peak_mm: float,
-                 rate: float = OPENING_RATE, folder: str = "cases"):
-        v = Variant(calibrated_variant(material).material, opening_rate=rate, gauge=GAUGES[(D * 1e3, notch)])
+                 rate: float = OPENING_RATE, folder: str = "cases", gauge: float = 0.0, L0: float = L0):
+        v = Variant(calibrated_variant(material).material, L0=L0, opening_rate=rate,
+                    gauge=gauge or GAUGES[(D * 1e3, notch)])
         super().__init__(D, notch, material["eps_p"], seed, v=v, folder=folder)
         self.writers = ["curve", "summary"]
         self.limit = PAST * MULTIPLES[-1] * cmod_at_peak_mm * 1e-3
