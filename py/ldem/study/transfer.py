@@ -132,12 +132,40 @@ def transfer(out: str, data: str, on: Tuple[float, float], start: dict, seeds: i
     return result
 
 
+def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int) -> List[Tuple[str, dict]]:
+    """(name, curve_report.summarize) of each beam predicted by the fit on b."""
+    folder, found = os.path.join(out, f"on_{beam_name(*b)}"), []
+    for other, m in sorted(measured_beams(data).items()):
+        if other == b:
+            continue
+        x_ref, curve = float(m["cmod_at_peak_mm"]), measured_curve(data, m)
+        name = beam_name(*other)
+        predicted = [gauge_curve(os.path.join(folder, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
+        mean = (curve["cmod_mm"], curve["load_mean_kN"]) if curve is not None else None
+        found.append((name, summarize(predicted, x_ref, mean, (float(m["peak_load_kN"]), x_ref))))
+    return found
+
+
+def error_lines(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -> List[str]:
+    """One row per (calibration beam, predicted beam): each quantity's error,
+    predicted mean over measured minus one."""
+    keys = ["peak_kN", *(f"load_at_{m:g}" for m in MULTIPLES), "work_J"]
+    lines = ["| calibrated on | predicted | peak | " + " | ".join(f"load at {m:g} CMOD_peak" for m in MULTIPLES)
+             + f" | work to {MULTIPLES[-1]:g} CMOD_peak |", "|---|---|" + "---|" * len(keys)]
+    for b in on:
+        for name, s in _predicted(out, data, b, seeds):
+            cells = [s["predicted"][k][0] / s["measured"][k] - 1 for k in keys]
+            lines.append(f"| {beam_name(*b)} | {name} | " +
+                         " | ".join("" if math.isnan(c) else f"{c:+.1%}" for c in cells) + " |")
+    return ["Errors of the transferred predictions (mean of six seeds over the measured, minus one; empty: "
+            "not measured):", "", *lines]
+
+
 def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -> str:
     """OUT/transfer.md: each fit, then each transferred prediction's table."""
-    beams = measured_beams(data)
     lines = ["# Calibrate on one beam, predict the other two (Grégoire et al. 2013)", "",
              "By the protocol of [PROTOCOL.md](PROTOCOL.md), committed before any run. Written by "
-             "`ldem study beams transfer`.", ""]
+             "`ldem study beams transfer`.", "", *error_lines(out, data, on, seeds), ""]
     for b in on:
         folder = os.path.join(out, f"on_{beam_name(*b)}")
         with open(os.path.join(folder, "fit.json")) as f:
@@ -149,14 +177,7 @@ def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -
                   ", ".join(f"{k} = {best['material'][k]:.5g}" for k in result["fitted"]) +
                   "; the model's " + ", ".join(f"{q} {e:+.2%}" for q, e in zip(("peak", "work"), best["error"])) +
                   " of the measured.", ""]
-        for other, m in sorted(beams.items()):
-            if other == b:
-                continue
-            x_ref, curve = float(m["cmod_at_peak_mm"]), measured_curve(data, m)
-            name = beam_name(*other)
-            predicted = [gauge_curve(os.path.join(folder, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
-            mean = (curve["cmod_mm"], curve["load_mean_kN"]) if curve is not None else None
-            s = summarize(predicted, x_ref, mean, (float(m["peak_load_kN"]), x_ref))
+        for name, s in _predicted(out, data, b, seeds):
             lines += [f"### {name}, predicted", "", *table_lines(s), ""]
     text = "\n".join(lines)
     io.write_text(os.path.join(out, "transfer.md"), text)
