@@ -82,10 +82,9 @@ def figure(path: str, title: str, curves: Sequence[Curve], x_ref: float, x_label
     top = max(float(np.max(load)) for _, load in curves)
     if band is not None:
         top = max(top, float(np.max(band["max"])))
-    ax.set(xlabel=x_label, ylabel="load [kN]", xlim=(0, xmax), ylim=(0, 1.08 * top), title=title)
-    ax.text(0.99, 0.98, "dotted: " + ", ".join(f"{m:g}" for m in MULTIPLES) + f" x {x_ref:.4g}",
-            transform=ax.transAxes, ha="right", va="top", fontsize=7, color="0.35")
-    ax.legend(fontsize=7, loc="center right")
+    ax.set(xlabel=x_label, ylabel="load [kN]", xlim=(0, xmax), ylim=(0, 1.08 * top))
+    ax.set_title(f"{title}\n(dotted: " + ", ".join(f"{m:g}" for m in MULTIPLES) + f" x {x_ref:.4g})", fontsize=10)
+    ax.legend(fontsize=7, loc="best")
     plots.save(fig, path)
     return path
 
