@@ -89,3 +89,15 @@ def test_a_whole_curve_beam_is_held_by_its_gauge_and_stops_past_four_times_the_o
     assert t.limit == pytest.approx(whole_curves.PAST * 4 * 0.0193e-3)
     stop = whole_curves.ToOpening(t.limit)
     assert stop({"gauge_m": 0.99 * t.limit}) and not stop({"gauge_m": t.limit})
+
+
+def test_the_whole_curve_figure_is_a_palette_png(tmp_path):
+    """Committed under results/ (a budget of binaries): 256 colours, still a picture."""
+    from PIL import Image
+
+    from conftest import picture
+
+    path = curve_report.figure(str(tmp_path / "w.png"), "bilinear", [recorded()], XP, "x [mm]",
+                               measured_peak=(PP, XP))
+    assert Image.open(path).mode == "P"
+    picture(path)

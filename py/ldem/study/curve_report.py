@@ -85,7 +85,7 @@ def figure(path: str, title: str, curves: Sequence[Curve], x_ref: float, x_label
     ax.set(xlabel=x_label, ylabel="load [kN]", xlim=(0, xmax), ylim=(0, 1.08 * top))
     ax.set_title(f"{title}\n(dotted: " + ", ".join(f"{m:g}" for m in MULTIPLES) + f" x {x_ref:.4g})", fontsize=10)
     ax.legend(fontsize=7, loc="best")
-    plots.save(fig, path)
+    plots.save(fig, path, palette=True)
     return path
 
 
