@@ -26,9 +26,9 @@ import numpy as np
 from .. import io
 from .beam_comparison import measured_curve
 from .curve_quantities import MULTIPLES, quantities, work_to
-from .curve_report import summarize, table_lines
+from .curve_report import figure, summarize, table_lines
 from .executors import run_cases
-from .whole_curves import WholeCurve, beam_name, gauge_curve, measured_beams
+from .whole_curves import WholeCurve, beam_name, gauge_curve, gauge_label, measured, measured_beams
 
 FITTED = ("eps_p", "Gf_mean")
 FIT_SEEDS = (1, 2, 3)
@@ -132,8 +132,9 @@ def transfer(out: str, data: str, on: Tuple[float, float], start: dict, seeds: i
     return result
 
 
-def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int) -> List[Tuple[str, dict]]:
-    """(name, curve_report.summarize) of each beam predicted by the fit on b."""
+def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int, draw: bool = False) -> List[Tuple[str, dict]]:
+    """(name, curve_report.summarize) of each beam predicted by the fit on b;
+    draw: also OUT/on_{b}/{name}.png, the seeds over the measurement."""
     folder, found = os.path.join(out, f"on_{beam_name(*b)}"), []
     for other, m in sorted(measured_beams(data).items()):
         if other == b:
@@ -143,6 +144,9 @@ def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int) -> List[
         predicted = [gauge_curve(os.path.join(folder, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
         mean = (curve["cmod_mm"], curve["load_mean_kN"]) if curve is not None else None
         found.append((name, summarize(predicted, x_ref, mean, (float(m["peak_load_kN"]), x_ref))))
+        if draw:
+            figure(os.path.join(folder, f"{name}.png"), f"{name} predicted, calibrated on {beam_name(*b)}",
+                   predicted, x_ref, gauge_label(*other), **measured(curve, m))
     return found
 
 
@@ -177,8 +181,9 @@ def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -
                   ", ".join(f"{k} = {best['material'][k]:.5g}" for k in result["fitted"]) +
                   "; the model's " + ", ".join(f"{q} {e:+.2%}" for q, e in zip(("peak", "work"), best["error"])) +
                   " of the measured.", ""]
-        for name, s in _predicted(out, data, b, seeds):
-            lines += [f"### {name}, predicted", "", *table_lines(s), ""]
+        for name, s in _predicted(out, data, b, seeds, draw=True):
+            lines += [f"### {name}, predicted", "", *table_lines(s), "",
+                      f"![{name} predicted, calibrated on {beam_name(*b)}](on_{beam_name(*b)}/{name}.png)", ""]
     text = "\n".join(lines)
     io.write_text(os.path.join(out, "transfer.md"), text)
     return text

@@ -88,6 +88,19 @@ def beam_name(D: float, notch: float) -> str:
     return f"D{D:g}_n{notch:g}"
 
 
+def gauge_label(D: float, notch: float) -> str:
+    return f"CMOD over {GAUGES[(D, notch)] * 1e3:g} mm [mm]"
+
+
+def measured(band, m: dict) -> dict:
+    """curve_report.figure's measured arguments: the band of a measured curve,
+    else the measured peak alone (measured.csv's row m)."""
+    if band is None:
+        return {"measured_peak": (float(m["peak_load_kN"]), float(m["cmod_at_peak_mm"]))}
+    return {"band": {"x": band["cmod_mm"], "mean": band["load_mean_kN"], "min": band["load_min_kN"],
+                     "max": band["load_max_kN"]}}
+
+
 def report(out: str, data: str, seeds: int) -> str:
     """whole_curves.md and a figure per beam, from the finished cases."""
     lines = ["# Grégoire et al. (2013): whole curves, the calibrated concrete against the measurements", "",
@@ -109,11 +122,7 @@ def report(out: str, data: str, seeds: int) -> str:
         mean = (band["cmod_mm"], band["load_mean_kN"]) if band is not None else None
         s = summarize(curves, x_ref, mean, (float(m["peak_load_kN"]), x_ref))
         title = f"D = {D:g} mm, {NAMES[n]}: gauge {GAUGES[(D, n)] * 1e3:g} mm"
-        kw = ({"band": {"x": band["cmod_mm"], "mean": band["load_mean_kN"], "min": band["load_min_kN"],
-                        "max": band["load_max_kN"]}} if band is not None
-              else {"measured_peak": (float(m["peak_load_kN"]), x_ref)})
-        figure(os.path.join(out, f"{name}.png"), title, curves, x_ref, f"CMOD over {GAUGES[(D, n)] * 1e3:g} mm [mm]",
-               **kw)
+        figure(os.path.join(out, f"{name}.png"), title, curves, x_ref, gauge_label(D, n), **measured(band, m))
         quarter = gauge_curve(os.path.join(out, "rate_check", f"{name}_s1"))
         q1, q4 = (summarize([c], x_ref)["seeds"][0] for c in (curves[0], quarter))
         lines += [f"## {title}", "", *table_lines(s), "",
