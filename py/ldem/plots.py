@@ -21,13 +21,26 @@ plt.style.use(STYLE)
 FIGURE_FORMATS = ("png", "pdf", "svg")
 
 
-def save(fig, path: str) -> None:
-    """Writes fig (whole, or not at all) in the format of path's extension, then frees it."""
+def save(fig, path: str, palette: bool = False) -> None:
+    """Writes fig (whole, or not at all) in the format of path's extension, then frees it.
+    palette: a PNG of 256 colours (median cut), a third of the bytes of a line plot's
+    RGBA: for figures committed under results/, whose binaries have a budget."""
     from .io.files import atomic
 
     try:
         with atomic(path) as tmp:
-            fig.savefig(tmp, format=os.path.splitext(path)[1][1:])
+            kind = os.path.splitext(path)[1][1:]
+            if palette and kind == "png":
+                import io
+                from PIL import Image
+
+                buffer = io.BytesIO()
+                fig.savefig(buffer, format="png")
+                buffer.seek(0)
+                Image.open(buffer).convert("RGB").quantize(256, Image.Quantize.MEDIANCUT).save(tmp, "png",
+                                                                                                optimize=True)
+            else:
+                fig.savefig(tmp, format=kind)
     finally:
         plt.close(fig)
 

@@ -14,7 +14,8 @@ from ldem import io
 from ldem.study import beams
 
 PREDICTION = os.path.join(ROOT, "results", "beams", "gregoire2013")
-COMMANDS = ["calibrate", "predict", "uniform", "curves", "compare", "size-effect", "diagnose", "calibrated"]
+COMMANDS = ["calibrate", "predict", "uniform", "curves", "compare", "size-effect", "diagnose", "calibrated",
+            "whole-curves", "transfer"]
 
 
 def _rows(path):
@@ -106,3 +107,16 @@ def test_bad_input_is_one_line_before_anything_runs(tmp_path, cli):
     r = cli("study", "beams", "diagnose", "--out", str(tmp_path), "--factors", "cmod,nothing")
     assert r.returncode == 2 and "unknown factor 'nothing'" in r.stderr
     assert not (tmp_path / "diagnosis").exists()
+
+
+def test_whole_curves_and_transfer_refuse_bad_input_in_one_line(cli, tmp_path):
+    """No calibrated concrete beside OUT, or a beam that was not measured: rc 2
+    and one line naming it, before anything runs."""
+    data = os.path.join(ROOT, "..", "shared", "data", "gregoire2013")
+    out = tmp_path / "study" / "whole_curves"
+    r = cli("study", "beams", "whole-curves", "--out", str(out), "--data", data)
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "calibrated/material.json not found" in r.stderr
+    if os.path.isdir(data):
+        r = cli("study", "beams", "transfer", "--on", "D60_n0", "--out", str(tmp_path / "t"), "--data", data)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1 and "unknown beam 'D60_n0'" in r.stderr
+    assert not out.exists()

@@ -10,6 +10,8 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams size-effect [--out OUT]                        size_effect.md|csv|png, cracks.png
     ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
+    ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
+    ldem study beams transfer [--on D50_n0,...] [--seeds 6] [--jobs J]   OUT/transfer/ (transfer)
 
 Cases are resumed and run side by side as every study's (J at a time, one
 thread each); a finished case is not run again."""
@@ -27,6 +29,8 @@ from .beams import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, cal
 from .concrete import calibrate as calibrate_concrete
 from .options import add_seeds, parameter_option, parse_names, seed_count
 from .registry import Study, register
+from .transfer import report as transfer_report, transfer as run_transfer
+from .whole_curves import beam_name, measured_beams, run as run_whole_curves
 
 OUT = os.path.join("results", "beams", "gregoire2013")
 CALIBRATED_NOTE = ("The nine beams with the concrete of the calibration procedure (docs/calibration.md: "
@@ -118,6 +122,32 @@ def calibrated(args) -> None:
     print(text)
 
 
+def calibrated_material(out: str) -> str:
+    """OUT/../calibrated/material.json, the calibrated concrete."""
+    material = os.path.join(os.path.dirname(os.path.abspath(out)), "calibrated", "material.json")
+    if not os.path.isfile(material):
+        raise ValueError(f"{material} not found: `ldem study beams calibrated` writes it")
+    return material
+
+
+def whole(args) -> None:
+    """The measured beams' whole curves with the calibrated concrete."""
+    print(run_whole_curves(args.out, calibrated_material(args.out), args.data or default_data(args.out),
+                           seed_count(args), args.jobs))
+
+
+def transfer(args) -> None:
+    """Calibrate on each beam of --on in turn, predict the others (transfer/PROTOCOL.md)."""
+    data = args.data or default_data(args.out)
+    names = {beam_name(*b): b for b in measured_beams(data)}
+    on = [names[n] for n in parse_names(args.on, names, "beam", ", ".join(names))]
+    with open(calibrated_material(args.out)) as f:
+        start = json.load(f)["material"]
+    for b in on:
+        run_transfer(args.out, data, b, start, seed_count(args), args.jobs, log)
+    print(transfer_report(args.out, data, on, seed_count(args)))
+
+
 def _jobs(p, note: str = "") -> None:
     p.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each" + note)
 
@@ -165,6 +195,18 @@ def add_arguments(b) -> None:
     q.add_argument("--seeds-200", type=int, default=2, help="specimens of the D = 200 mm beams")
     _jobs(q)
     _data(q)
+    w = command("whole-curves", whole, "the measured beams under a clip gauge's servo to 4.4 times the measured "
+                                       "CMOD at the peak, the calibrated concrete: OUT/whole_curves/",
+                os.path.join(OUT, "whole_curves"))
+    add_seeds(w, "beam")
+    _jobs(w)
+    _data(w)
+    t = command("transfer", transfer, "calibrate on one measured beam, predict the other two, by "
+                                      "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
+    t.add_argument("--on", default="D50_n0,D50_n0.5,D100_n0.2", help="the beams to calibrate on, in turn")
+    add_seeds(t, "predicted beam")
+    _jobs(t)
+    _data(t)
 
 
 def cmd_beams(args) -> int:

@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import io
 from ..markdown import mean_cv_cell
+from .curve_quantities import cmod_at_peak, load_at_opening, rising
 
 DATA = os.path.join("..", "shared", "data", "gregoire2013")  # beside the repository
 NAMES = {0.0: "no notch", 0.2: "notch D/5", 0.5: "notch D/2"}
@@ -50,25 +51,6 @@ def predicted_curves(out: str, beam: Beam) -> List[Tuple[np.ndarray, np.ndarray]
         ok = ~np.isnan(load)  # a shorter run leaves its columns empty
         curves.append((cmod[ok], load[ok]))
     return curves
-
-
-def cmod_at_peak(curve: Tuple[np.ndarray, np.ndarray]) -> float:
-    """The CMOD of the recorded point of largest load."""
-    return float(rising(curve)[0][-1])
-
-
-def load_at_opening(curve: Tuple[np.ndarray, np.ndarray], x: float) -> float:
-    """The load when the CMOD first reaches x, linear between the recorded points
-    (nan if it never does)."""
-    cmod, load = curve
-    j = int(np.argmax(cmod >= x))
-    return float(np.interp(x, cmod[j - 1:j + 1], load[j - 1:j + 1])) if j > 0 else float("nan")
-
-
-def rising(curve: Tuple[np.ndarray, np.ndarray]) -> Tuple[np.ndarray, np.ndarray]:
-    """The curve up to its peak."""
-    j = int(np.argmax(curve[1])) + 1
-    return curve[0][:j], curve[1][:j]
 
 
 def rising_branch(out: str, data: str, beam: Beam, m: dict) -> Optional[dict]:

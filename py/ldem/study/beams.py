@@ -62,13 +62,17 @@ class Variant:
     width in modules; supports: each a strip of that many node lines (held
     as the one line is: a wider one also resists the beam's rotation); rate:
     deflection rate / D [1/s]; opening_rate: a CMOD servo's opening rate / D
-    [1/s] (0: the platen under displacement control)."""
+    [1/s] (0: the platen under displacement control); gauge: the length of a
+    clip gauge across the notch's module on the lower face [m], a whole number
+    of modules (probe gauge_m; the servo holds it when there is one), 0: none
+    (the servo holds the notch module's opening, cmod_m)."""
     material: Tuple[Tuple[str, object], ...] = ()
     L0: float = L0
     platen: int = 1
     supports: int = 1
     rate: float = 0.1
     opening_rate: float = 0.0
+    gauge: float = 0.0
 
     def concrete(self, eps_p: float, **more) -> dict:
         """The material's parameters: the prediction's, eps_p and more, then the variant's."""
@@ -101,8 +105,10 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v:
         w = 0.5 * (v.supports - 1) * h
         return {"box": {"min": [x - w, 0.0, 0.0], "max": [x + w, B, 0.0]}}
 
-    cmod = {"a": [mid - 0.5 * h, 0.0, 0.0], "b": [mid + 0.5 * h, 0.0, 0.0], "direction": "x"}
-    servo = {"control": "cmod"} if v.opening_rate > 0 else {}
+    probes = {"cmod": {"a": [mid - 0.5 * h, 0.0, 0.0], "b": [mid + 0.5 * h, 0.0, 0.0], "direction": "x"}}
+    if v.gauge > 0:
+        probes["gauge"] = gauge_probe(mid, h, v.gauge)
+    servo = {"control": "gauge" if v.gauge > 0 else "cmod"} if v.opening_rate > 0 else {}
     opening = {"opening_rate": v.opening_rate * D} if v.opening_rate > 0 else {}
     return SpecimenTest({
         "title": f"Gregoire 2013 beam D = {D * 1e3:g} mm, notch {notch:g} D",
@@ -115,10 +121,22 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v:
                             "drive": {"z": -1.0}}},
         "measure": dict({"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D,  # stress = F [MN]
                          "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
-                         "probes": {"cmod": cmod}}, **servo),
+                         "probes": probes}, **servo),
         "material": v.concrete(eps_p, Gf_cv=gf_cv),
         "loading": dict({"strain_rate": v.rate}, **opening),
         "run": {"seed": seed, "final_strain": 3e-3, "threads": 1}})
+
+
+def gauge_probe(mid: float, h: float, length: float) -> dict:
+    """A clip gauge of `length` (n modules) on the lower face across the module
+    centred on x = mid, its ends on the face's node lines: the n - 1 modules
+    beyond that one split between the two sides, the odd one on the left."""
+    n = round(length / h)
+    if n < 1 or abs(n * h - length) > 1e-9 * length:
+        raise ValueError(f"the gauge ({length * 1e3:g} mm) must be a whole number of modules ({h * 1e3:g} mm)")
+    left = (n - 1) - (n - 1) // 2
+    return {"a": [mid - (0.5 + left) * h, 0.0, 0.0], "b": [mid + (0.5 + (n - 1) // 2) * h, 0.0, 0.0],
+            "direction": "x"}
 
 
 class PastThePeak:

@@ -7,12 +7,15 @@ and the crack pictures, written before any measurement is seen.
 OUT/material.json: the calibration; OUT/cases/s{seed}/: the runs (seed 1 with
 its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's).
 
-    ldem study validation NAME [--calibrate-only] [--seeds 6] [--jobs J] [--out OUT] [--root .]
+    ldem study validation NAME [--calibrate-only | --whole-curve] [--seeds 6] [--jobs J] [--out OUT] [--root .]
 
 NAME: l_panel (Winkler et al. 2001), eccentric_notch_beam (García-Álvarez et
 al. 2012), malvar_warren_s1 or _s2 (Malvar and Warren 1988, from f_c alone;
 with _weight: lying on the supports under gravity); OUT:
-ROOT/results/validation/NAME. Finished cases are not run again."""
+ROOT/results/validation/NAME. Finished cases are not run again. --whole-curve
+runs nothing: OUT/whole_curve.md|png, the committed prediction's curve
+quantities (issue 39 item 2) at multiples of its own opening at the peak, the
+measured column left empty (the measurements stay out of the repository)."""
 from __future__ import annotations
 
 import json
@@ -28,6 +31,7 @@ from .. import io
 from ..specimen import SpecimenTest
 from .concrete import calibrate, slope
 from .mc2010 import lab_values
+from .curve_report import figure as curve_figure, summarize, table_lines
 from .beams import PastThePeak
 from .cases import Named
 from .executors import run_cases
@@ -188,9 +192,47 @@ def _figure(out: str, name: str, curves: dict, seeds: int, x_label: str) -> None
     plots.save(fig, os.path.join(out, "curves.png"))
 
 
+def whole_curve(out: str, name: str) -> str:
+    """OUT/whole_curve.md and .png from the committed predictions.csv and curves.csv."""
+    row = io.read_table(os.path.join(out, "predictions.csv"))[0]
+    table = io.read_table(os.path.join(out, "curves.csv"))
+    seeds = sorted(int(k[len("x_s"):]) for k in table[0] if k.startswith("x_s"))
+    curves = []
+    for s in seeds:
+        points = [(float(r[f"x_s{s}"]), float(r[f"load_kN_s{s}"])) for r in table if r[f"x_s{s}"] != ""]
+        curves.append(tuple(np.array(c) for c in zip(*points)))
+    x_ref, label = float(row["x_at_peak"]), row["x_label"]
+    unit = label[label.rfind("[") + 1:label.rfind("]")]
+    curve_figure(os.path.join(out, "whole_curve.png"), f"{name}: blind prediction", curves, x_ref, label)
+    summary = summarize(curves, x_ref)
+    text = "\n".join([f"# {name}: the whole curve, blind", "",
+                      f"The committed prediction's curves ({len(seeds)} specimens, `curves.csv`), read at multiples "
+                      f"of its own mean {label.split(' [')[0]} at the peak, {x_ref:.4g} {unit}, along each curve past "
+                      "its peak (ldem.study.curve_quantities). The measured column is empty: the measurements were "
+                      "never given to this project. Written by `ldem study validation NAME --whole-curve`.", "",
+                      *table_lines(summary, unit), "", *_peak_note(summary, row),
+                      "![the whole curve](whole_curve.png)", ""])
+    io.write_text(os.path.join(out, "whole_curve.md"), text)
+    return text
+
+
+def _peak_note(summary: dict, row: dict) -> List[str]:
+    """A line when the curves' largest recorded loads and the prediction's peak
+    (each run's own, predictions.csv) differ by more than 0.5 %."""
+    curves, run = summary["predicted"]["peak_kN"][0], float(row["peak_load_kN"])
+    if abs(curves / run - 1) <= 0.005:
+        return []
+    return [f"The peak here is the mean of each curve's largest recorded load; the prediction's (`predictions.csv`, "
+            f"each run's own peak) is {run:.3f} kN, {run / curves - 1:+.1%}: a run recorded before the load cell "
+            "(issue 41) read its peak at a single step, the top of the ringing.", ""]
+
+
 def add_arguments(v) -> None:
     v.add_argument("name", choices=sorted(SPECIMENS), metavar="NAME", help=", ".join(sorted(SPECIMENS)))
-    v.add_argument("--calibrate-only", action="store_true", help="OUT/material.json only: run no specimen")
+    only = v.add_mutually_exclusive_group()
+    only.add_argument("--calibrate-only", action="store_true", help="OUT/material.json only: run no specimen")
+    only.add_argument("--whole-curve", action="store_true", help="run nothing: OUT/whole_curve.md|png from the "
+                                                              "committed prediction")
     add_seeds(v, "prediction")
     v.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each")
     v.add_argument("--root", default=".", metavar="DIR", help="the repository, whose examples/ hold the files")
@@ -202,6 +244,8 @@ def cmd_validation(args) -> int:
     log = lambda s: print(s, flush=True)  # noqa: E731
     if args.calibrate_only:
         material(args.root, args.name, out, log)
+    elif args.whole_curve:
+        print(whole_curve(out, args.name))
     else:
         print(predict(args.root, args.name, out, seed_count(args), args.jobs, log))
     return 0
