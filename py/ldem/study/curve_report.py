@@ -5,7 +5,6 @@ blind prediction, whose measurements stay out of the repository)."""
 from __future__ import annotations
 
 import math
-import os
 from typing import Dict, List, Optional, Sequence
 
 import numpy as np
@@ -88,8 +87,3 @@ def figure(path: str, title: str, curves: Sequence[Curve], x_ref: float, x_label
     plots.save(fig, path, palette=True)
     return path
 
-
-def write(out: str, name: str, curves: Sequence[Curve], x_ref: float, x_label: str, **measured) -> str:
-    """out/{name}.png; returns its file name."""
-    os.makedirs(out, exist_ok=True)
-    return os.path.basename(figure(os.path.join(out, f"{name}.png"), name, curves, x_ref, x_label, **measured))

@@ -26,9 +26,10 @@ import numpy as np
 from .. import io
 from .beam_comparison import measured_curve
 from .curve_quantities import MULTIPLES, quantities, work_to
-from .curve_report import figure, summarize, table_lines
+from .curve_report import figure, table_lines
 from .executors import run_cases
-from .whole_curves import WholeCurve, beam_name, gauge_curve, gauge_label, measured, measured_beams
+from .whole_curves import (WholeCurve, against_measured, beam_name, gauge_curve, gauge_label, measured,
+                           measured_beams)
 
 FITTED = ("eps_p", "Gf_mean")
 FIT_SEEDS = (1, 2, 3)
@@ -96,8 +97,8 @@ def cases(beam: Tuple[float, float], material: dict, x_ref: float, seeds: Sequen
     return [make(beam[0] * 1e-3, beam[1], material, s, x_ref) for s in seeds]
 
 
-def model_means(out: str, beam: Tuple[float, float], x_ref: float, seeds: Sequence[int]) -> List[dict]:
-    """Each finished seed's quantities (curve_quantities at multiples of x_ref)."""
+def seed_quantities(out: str, beam: Tuple[float, float], x_ref: float, seeds: Sequence[int]) -> List[dict]:
+    """Each finished seed's quantities (curve_quantities at multiples of x_ref), seed by seed."""
     name = beam_name(*beam)
     return [quantities(gauge_curve(os.path.join(out, "cases", f"{name}_s{s}")), x_ref) for s in seeds]
 
@@ -112,7 +113,7 @@ def evaluator(folder: str, t: Target, jobs: int, make=WholeCurve, seeds: Sequenc
         out = os.path.join(folder, "rounds", str(count[0]))
         count[0] += 1
         run_cases(cases(t.beam, material, t.cmod_at_peak_mm, seeds, make), out, jobs=jobs, log=log)
-        q = model_means(out, t.beam, t.cmod_at_peak_mm, seeds)
+        q = seed_quantities(out, t.beam, t.cmod_at_peak_mm, seeds)
         return [float(np.mean([s["peak_kN"] for s in q])), float(np.mean([s["work_J"] for s in q]))]
     return evaluate
 
@@ -139,14 +140,12 @@ def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int, draw: bo
     for other, m in sorted(measured_beams(data).items()):
         if other == b:
             continue
-        x_ref, curve = float(m["cmod_at_peak_mm"]), measured_curve(data, m)
-        name = beam_name(*other)
+        curve, name = measured_curve(data, m), beam_name(*other)
         predicted = [gauge_curve(os.path.join(folder, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
-        mean = (curve["cmod_mm"], curve["load_mean_kN"]) if curve is not None else None
-        found.append((name, summarize(predicted, x_ref, mean, (float(m["peak_load_kN"]), x_ref))))
+        found.append((name, against_measured(predicted, curve, m)))
         if draw:
             figure(os.path.join(folder, f"{name}.png"), f"{name} predicted, calibrated on {beam_name(*b)}",
-                   predicted, x_ref, gauge_label(*other), **measured(curve, m))
+                   predicted, float(m["cmod_at_peak_mm"]), gauge_label(*other), **measured(curve, m))
     return found
 
 

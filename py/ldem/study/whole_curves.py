@@ -27,7 +27,7 @@ import numpy as np
 from .. import io
 from .beam_comparison import NAMES, _by_beam, measured_curve
 from .beams import L0, Beam, Variant, calibrated_variant
-from .curve_quantities import MULTIPLES
+from .curve_quantities import MULTIPLES, quantities
 from .curve_report import figure, summarize, table_lines
 from .executors import run_cases
 
@@ -92,6 +92,14 @@ def gauge_label(D: float, notch: float) -> str:
     return f"CMOD over {GAUGES[(D, notch)] * 1e3:g} mm [mm]"
 
 
+def against_measured(curves, band, m: dict) -> dict:
+    """curve_report.summarize of predicted curves against a beam's measured
+    mean curve (band), or against its measured peak alone (measured.csv's row m)."""
+    mean = (band["cmod_mm"], band["load_mean_kN"]) if band is not None else None
+    x_ref = float(m["cmod_at_peak_mm"])
+    return summarize(curves, x_ref, mean, (float(m["peak_load_kN"]), x_ref))
+
+
 def measured(band, m: dict) -> dict:
     """curve_report.figure's measured arguments: the band of a measured curve,
     else the measured peak alone (measured.csv's row m)."""
@@ -119,12 +127,11 @@ def report(out: str, data: str, seeds: int) -> str:
         curves = [gauge_curve(os.path.join(out, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
         x_ref = float(m["cmod_at_peak_mm"])
         band = measured_curve(data, m)
-        mean = (band["cmod_mm"], band["load_mean_kN"]) if band is not None else None
-        s = summarize(curves, x_ref, mean, (float(m["peak_load_kN"]), x_ref))
+        s = against_measured(curves, band, m)
         title = f"D = {D:g} mm, {NAMES[n]}: gauge {GAUGES[(D, n)] * 1e3:g} mm"
         figure(os.path.join(out, f"{name}.png"), title, curves, x_ref, gauge_label(D, n), **measured(band, m))
         quarter = gauge_curve(os.path.join(out, "rate_check", f"{name}_s1"))
-        q1, q4 = (summarize([c], x_ref)["seeds"][0] for c in (curves[0], quarter))
+        q1, q4 = (quantities(c, x_ref) for c in (curves[0], quarter))
         lines += [f"## {title}", "", *table_lines(s), "",
                   f"Rate check, seed 1: at a quarter of the rate the peak is {q4['peak_kN']:.3f} kN and the "
                   f"work to {MULTIPLES[-1]:g} x {x_ref:g} mm {q4['work_J']:.4g} J; at the study's rate they are "
