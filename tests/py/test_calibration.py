@@ -165,22 +165,6 @@ def test_the_beams_with_a_calibrated_concrete_carry_all_of_it():
         assert {k: got[k] for k in m} == m and got["Gf_cv"] == 1.0
 
 
-def test_the_work_of_fracture_is_the_area_under_the_load_over_the_ligament():
-    """A triangle of 1 kN over a deflection of 0.2 mm: W = 0.1 J over (D - a) b = 25 x 50 mm^2 = 80 N/m."""
-    D = concrete.RILEM["D"]
-    delta = np.array([0.0, 0.05e-3, 0.2e-3])
-    curve = {"stress_MPa": np.array([0.0, 1e-3, 0.0]), "mean_strain": delta / D}
-    assert concrete.work_of_fracture(curve) == pytest.approx(0.1 / (0.025 * 0.05), rel=1e-12)
-
-
-def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
-    stop = concrete.LoadGone(0.02)
-    assert stop({"stress_MPa": 0.0, "stress_top_MPa": 0.0})
-    assert stop({"stress_MPa": 1.0, "stress_top_MPa": 1.0})
-    assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.5})  # the platen still pushes
-    assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.01}) is False
-
-
 class AffinePrism:
     """A prism whose response is known in closed form: E_prism = 0.95 E_bars,
     and a strength proportional to the bars' E and affine in eps_p,

@@ -12,6 +12,7 @@ processes or on a dask.distributed cluster, resumable, aggregated into tables
     ldem study beams       COMMAND ...   (calibrate, predict --eps-p E, curves, compare, size-effect, ...)
     ldem study validation  NAME [--seeds 6] [--calibrate-only]
     ldem study calibration --E --nu --ft --L0 (--fc | --GF) [--out material.json]
+    ldem study fracture-energy MATERIAL.json [--seeds 3] [--jobs J]
 
 A study is one module: its cases, tables and report, then its options
 (add_arguments), its run from them with the lines it prints, and
@@ -32,6 +33,7 @@ Modules, each importing only those listed before it:
   mesh         coarse modules with the study's criterion against the fine lattice (laws, cases)
   refinement   the same cubes with finer modules
   concrete     the virtual prism and the calibration from a laboratory's properties (`calibration`)
+  fracture_energy  the lattice's own G_F on the virtual RILEM beam (`fracture-energy`)
   ablation     one factor at a time on a cube, stopped past the peak
   beams        the Gregoire et al. (2013) beams: specimens, calibration, runs, predictions.csv
   beam_tables  their size effect (Bazant's law fitted per notch) and curve tables
@@ -51,7 +53,7 @@ from .damping import run_damping  # noqa: F401
 from . import mesh, mesh_tables, refinement  # noqa: F401
 # Each study registers itself as its module is imported (size_effect, damping, mesh, refinement above):
 # this order is `ldem study`'s.
-from . import concrete, beam_command, ablation, validation  # noqa: F401
+from . import concrete, fracture_energy, beam_command, ablation, validation  # noqa: F401
 from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
                      fit_fractal, fractal_fits, mean_cv)
 from ..curves import mean_curve, mean_curve_peak  # noqa: F401

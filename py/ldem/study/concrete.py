@@ -170,53 +170,6 @@ def calibrate(E: float, nu: float, f_t: float, f_c: Optional[float] = None, G_F:
             "L0": L0, "seeds": list(seeds)}
 
 
-# The virtual work-of-fracture test of RILEM TC 50-FMC (1985), in half size: a
-# beam D = b = 50 mm, span 8 D = 400 mm (RILEM's span over depth), length 420 mm,
-# notch D/2 at mid-span, loaded there by a platen under displacement control.
-RILEM = {"D": 0.05, "span": 0.40, "length": 0.42, "notch": 0.5}
-
-
-def rilem_beam(material: dict, L0: float, seed: int) -> SpecimenTest:
-    """The notched beam of the work-of-fracture test: supports one node line
-    each (a pin and a roller), a platen one module wide, 0.1 D per second."""
-    D, S, length = RILEM["D"], RILEM["span"], RILEM["length"]
-    mid = (round(length / 2 / L0 - 0.5) + 0.5) * L0  # a module's centre
-    x0 = mid - S / 2
-    return SpecimenTest({
-        "title": "RILEM work-of-fracture beam D = 50 mm, span 400 mm, notch D/2",
-        "shape": {"kind": "box", "L0": L0, "size": [length, D, D],
-                  "notch": {"depth": RILEM["notch"] * D, "width": L0, "at": mid}},
-        "groups": {"left": {"face": "z-", "plane": {"x": x0 - L0 / 2}, "fix": ["x", "y", "z"]},
-                   "right": {"face": "z-", "plane": {"x": x0 + S + L0 / 2}, "fix": ["z"]},
-                   "supports": {"union": ["left", "right"]},
-                   "load": {"box": {"min": [mid - L0 / 2, 0.0, D], "max": [mid + L0 / 2, D, D]}, "drive": {"z": -1.0}}},
-        "measure": {"support": "supports", "loaded": "load", "area": 1.0, "gauge_length": D},  # stress = F [MN]
-        "material": dict(material), "loading": {"strain_rate": 0.1},
-        "run": {"seed": seed, "final_strain": 0.06, "threads": 1}})
-
-
-class LoadGone:
-    """Stops a run once, past its peak, the load is below `fraction` of it."""
-
-    def __init__(self, fraction: float = 0.02):
-        self.fraction, self.peak = fraction, 0.0
-
-    def __call__(self, row) -> bool:
-        self.peak = max(self.peak, row["stress_MPa"])
-        return not (self.peak > 0 and row["stress_MPa"] < self.fraction * self.peak and
-                    row["stress_top_MPa"] < self.fraction * self.peak)
-
-
-def work_of_fracture(curve: dict) -> float:
-    """G_F [N/m]: the work of the load over the platen's deflection, W = int F
-    d(delta), over the ligament (D - a) b; RILEM's definition, without the
-    self-weight (the lattice has none) and without the tail past the stop."""
-    D = RILEM["D"]
-    F = np.asarray(curve["stress_MPa"]) * 1e6  # the force of area 1 [N]
-    delta = np.asarray(curve["mean_strain"]) * D
-    return float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(delta))) / ((1 - RILEM["notch"]) * D * D)
-
-
 def add_arguments(c) -> None:
     lab = "; the concrete's, as the laboratory reports it (default: fib MC2010's from --fc)"
     parameter_option(c, "E", "--E", lab, default=None)

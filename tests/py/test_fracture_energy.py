@@ -1,0 +1,73 @@
+"""The lattice's own fracture energy (ldem.study.fracture_energy): the RILEM
+beam's size at any module, the work of fracture of a known curve, the stop at
+2 % of the peak, and a coarse beam run to its stop whose G_F is the work that
+its energy balance says the bars and the damping took."""
+import json
+import os
+
+import numpy as np
+import pytest
+
+from ldem.study import concrete, fracture_energy as fe
+
+
+def test_the_beam_is_ten_modules_deep_and_never_less_than_50_mm():
+    assert fe.depth(0.005) == pytest.approx(0.050)  # RILEM's beam in half size: the diagnosis's
+    assert fe.depth(0.0025) == pytest.approx(0.050)  # 20 modules
+    assert fe.depth(0.0102) == pytest.approx(0.102)  # Malvar-Warren's module: RILEM's full size
+    assert fe.depth(0.0125) == pytest.approx(0.125)
+    for L0 in (0.002, 0.003, 0.0045, 0.007, 0.0102):  # an even number of modules: the notch is whole ones
+        n = fe.depth(L0) / L0
+        assert abs(n - round(n)) < 1e-9 and round(n) % 2 == 0 and round(n) >= fe.MODULES
+
+
+def test_the_half_size_beam_at_5_mm_is_the_diagnosis_beam():
+    d = fe.rilem_beam(concrete.lattice_material(37.5e9, 0.21, 1.14e-4, 143.24), 0.005, 1).description
+    assert d["shape"]["size"] == pytest.approx([0.42, 0.05, 0.05])
+    assert d["shape"]["notch"]["depth"] == pytest.approx(0.025) and d["shape"]["notch"]["at"] == pytest.approx(0.2125)
+    left, right = d["groups"]["left"]["plane"]["x"], d["groups"]["right"]["plane"]["x"]
+    assert right - left - 0.005 == pytest.approx(0.40)  # the span, 8 D: the planes lie half a module outside it
+
+
+def test_the_work_of_fracture_is_the_area_under_the_load_over_the_ligament():
+    """A triangle of 1 kN over a deflection of 0.2 mm: W = 0.1 J over (D - a) b = 25 x 50 mm^2 = 80 N/m."""
+    D = 0.05
+    delta = np.array([0.0, 0.05e-3, 0.2e-3])
+    curve = {"stress_MPa": np.array([0.0, 1e-3, 0.0]), "mean_strain": delta / D}
+    assert fe.work_of_fracture(curve, D) == pytest.approx(0.1 / (0.025 * 0.05), rel=1e-12)
+
+
+def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
+    stop = fe.LoadGone(0.02)
+    assert stop({"stress_MPa": 0.0, "stress_top_MPa": 0.0})
+    assert stop({"stress_MPa": 1.0, "stress_top_MPa": 1.0})
+    assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.5})  # the platen still pushes
+    assert stop({"stress_MPa": 0.01, "stress_top_MPa": 0.01}) is False
+
+
+def test_a_coarse_beam_runs_to_its_stop_and_its_g_f_is_the_drive_s_work_over_the_ligament(tmp_path, monkeypatch):
+    """Four modules deep at L0 = 10 mm (MODULES and HALF_D made small): the run
+    ends below 2 % of its peak, by LoadGone, and the work of fracture read from
+    the load cell's curve (the trapezoidal rule over its records) is the work
+    the drive did, which the integrator sums step by step, over the ligament;
+    that work is what the bars dissipated, the damping took and what is left
+    stored and moving (the energy balance)."""
+    monkeypatch.setattr(fe, "MODULES", 4)
+    monkeypatch.setattr(fe, "HALF_D", 0.01)
+    material = concrete.lattice_material(30e9, 0.2, 1.0e-4, 100.0)
+    material["Gf_cv"] = 0.0  # no field: a smooth crack
+    r = fe.measure({"material": material, "L0": 0.01}, 1, str(tmp_path), log=lambda s: None)
+    row, D = r["seeds"][0], 0.04
+    assert r["beam"]["D_m"] == pytest.approx(D)
+    assert row["stop"] == "stopped"  # by LoadGone, not by the final strain
+    last = fe.io.read_curve(os.path.join(tmp_path, "cases", "rilem_s1", "curve.csv"))
+    assert last["stress_MPa"][-1] < 0.02 * row["peak_kN"] * 1e-3 < last["stress_MPa"].max()
+    ligament = D * D / 2
+    work = last["external_work_J"][-1]
+    assert row["G_F"] * ligament == pytest.approx(work, rel=0.01)
+    assert row["dissipated_over_ligament"] * ligament == pytest.approx(last["fracture_J"][-1], rel=1e-12)
+    took = last["fracture_J"][-1] + last["damping_J"][-1] + last["elastic_J"][-1] + last["kinetic_J"][-1]
+    assert took == pytest.approx(work, rel=2e-3)
+    assert row["stored_over_ligament"] * ligament == pytest.approx(last["elastic_J"][-1], rel=1e-12)
+    assert r["ratio"] == pytest.approx(row["G_F"] / 100.0, rel=1e-12)
+    json.dumps(r)  # the result is plain data
