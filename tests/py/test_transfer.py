@@ -2,6 +2,7 @@
 and results/beams/gregoire2013/transfer/PROTOCOL.md): the fit lands within its
 tolerance on a tiny beam whose "measurement" is the model's own at other
 parameters, and the beams it predicts never reach it."""
+import json
 import math
 import os
 
@@ -74,7 +75,7 @@ def test_the_fit_sees_its_own_beam_only(tmp_path, monkeypatch, on):
 
     real_fit = transfer.fit
     monkeypatch.setattr(transfer, "fit", spy_fit)
-    monkeypatch.setattr(transfer, "evaluator", lambda folder, t, jobs, log=print: model(t))
+    monkeypatch.setattr(transfer, "evaluator", lambda folder, t, jobs, make, log=print: model(t))
     monkeypatch.setattr(transfer, "run_cases", lambda cases, out, jobs, log: predicted.extend(cases))
     result = transfer.transfer(str(tmp_path / "out"), data, on, START, seeds=2, log=lambda s: None)
     assert [t.beam for t in fitted] == [on]
@@ -85,6 +86,32 @@ def test_the_fit_sees_its_own_beam_only(tmp_path, monkeypatch, on):
         b for b in [(50.0, 0.0), (50.0, 0.5), (100.0, 0.2)] if b != on)
     assert all(c.test.build.params["eps_p"] == result["material"]["eps_p"] for c in predicted)
     assert os.path.isfile(tmp_path / "out" / f"on_{whole_curves.beam_name(*on)}" / "fit.json")
+
+
+def test_a_finer_module_reaches_the_fit_and_the_predictions_and_only_the_beams_asked_are_predicted(
+        tmp_path, monkeypatch):
+    """transfer(L0=2.5 mm, predict=[D50_n0]) on D50_n0.5 (the module check of
+    transfer/L0_2.5mm/PROTOCOL.md): the fit's runs and the predicted ones are
+    built at that module, and the D = 100 mm beam is not run."""
+    data = str(tmp_path / "data")
+    _data(data)
+    fit_runs, predicted = [], []
+
+    def evaluator(folder, t, jobs, make, log=print):
+        def evaluate(material):
+            fit_runs.extend(transfer.cases(t.beam, material, t.cmod_at_peak_mm, transfer.FIT_SEEDS, make))
+            return [t.peak_kN, t.work_J]
+        return evaluate
+
+    monkeypatch.setattr(transfer, "evaluator", evaluator)
+    monkeypatch.setattr(transfer, "run_cases", lambda cases, out, jobs, log: predicted.extend(cases))
+    transfer.transfer(str(tmp_path / "out"), data, (50.0, 0.5), START, seeds=2, log=lambda s: None, L0=0.0025,
+                      predict=[(50.0, 0.0)])
+    assert len(fit_runs) == 3 and {(c.D, c.notch, c.v.L0) for c in fit_runs} == {(0.05, 0.5, 0.0025)}
+    assert [(c.D, c.notch, c.v.L0, c.seed) for c in predicted] == [(0.05, 0.0, 0.0025, 1), (0.05, 0.0, 0.0025, 2)]
+    assert predicted[0].test.description["shape"]["L0"] == 0.0025
+    with open(tmp_path / "out" / "on_D50_n0.5" / "fit.json") as f:
+        assert json.load(f)["L0"] == 0.0025
 
 
 def test_a_targets_work_is_that_of_its_measured_mean_curve(tmp_path):

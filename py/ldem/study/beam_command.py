@@ -11,7 +11,7 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
     ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
-    ldem study beams transfer [--on D50_n0,...] [--seeds 6] [--jobs J]   OUT/transfer/ (transfer)
+    ldem study beams transfer [--on D50_n0,...] [--predict ...] [--L0 M] [--seeds 6] [--jobs J]   OUT/transfer/
 
 Cases are resumed and run side by side as every study's (J at a time, one
 thread each); a finished case is not run again."""
@@ -143,9 +143,11 @@ def transfer(args) -> None:
     on = [names[n] for n in parse_names(args.on, names, "beam", ", ".join(names))]
     with open(calibrated_material(args.out)) as f:
         start = json.load(f)["material"]
+    predict = None if args.predict is None else \
+        [names[n] for n in parse_names(args.predict, names, "beam", ", ".join(names))]
     for b in on:
-        run_transfer(args.out, data, b, start, seed_count(args), args.jobs, log)
-    print(transfer_report(args.out, data, on, seed_count(args)))
+        run_transfer(args.out, data, b, start, seed_count(args), args.jobs, log, args.L0, predict)
+    print(transfer_report(args.out, data, on, seed_count(args), predict))
 
 
 def _jobs(p, note: str = "") -> None:
@@ -204,6 +206,8 @@ def add_arguments(b) -> None:
     t = command("transfer", transfer, "calibrate on one measured beam, predict the other two, by "
                                       "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
     t.add_argument("--on", default="D50_n0,D50_n0.5,D100_n0.2", help="the beams to calibrate on, in turn")
+    t.add_argument("--predict", default=None, help="the beams to predict (default: every other measured one)")
+    parameter_option(t, "L0", "--L0", "; of every run (the gauges must be whole modules)", default=L0)
     add_seeds(t, "predicted beam")
     _jobs(t)
     _data(t)

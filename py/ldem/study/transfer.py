@@ -15,6 +15,7 @@ OUT/on_{beam}/: fit.json (each round), rounds/{k}/cases/ (the fit's runs),
 cases/ (the predictions), transfer.md (the table); OUT/transfer.md: all."""
 from __future__ import annotations
 
+import functools
 import json
 import math
 import os
@@ -27,6 +28,7 @@ from .. import io
 from .beam_comparison import measured_curve
 from .curve_quantities import MULTIPLES, quantities, work_to
 from .curve_report import figure, table_lines
+from .beams import L0 as BEAMS_L0
 from .executors import run_cases
 from .whole_curves import (WholeCurve, against_measured, beam_name, gauge_curve, gauge_label, measured,
                            measured_beams)
@@ -118,28 +120,36 @@ def evaluator(folder: str, t: Target, jobs: int, make=WholeCurve, seeds: Sequenc
     return evaluate
 
 
+def predicted_beams(data: str, on: Tuple[float, float], predict=None) -> List[Tuple[Tuple[float, float], dict]]:
+    """(beam, measured.csv row) of each measured beam other than `on`, of
+    those in `predict` if given."""
+    return [(b, m) for b, m in sorted(measured_beams(data).items())
+            if b != on and (predict is None or b in predict)]
+
+
 def transfer(out: str, data: str, on: Tuple[float, float], start: dict, seeds: int = 6, jobs: int = 1,
-             log: Callable[[str], None] = print) -> dict:
+             log: Callable[[str], None] = print, L0: float = BEAMS_L0, predict=None) -> dict:
     """Fit on beam `on` (given its measurement only), then predict every other
-    measured beam: OUT/on_{beam}/fit.json and cases/."""
+    measured beam (those in `predict`, if given), every run at module L0:
+    OUT/on_{beam}/fit.json and cases/."""
     folder = os.path.join(out, f"on_{beam_name(*on)}")
+    make = functools.partial(WholeCurve, L0=L0)
     t = target(data, on)
-    result = fit(t, start, evaluator(folder, t, jobs, log=log), log)
+    result = fit(t, start, evaluator(folder, t, jobs, make, log=log), log)
     os.makedirs(folder, exist_ok=True)
-    io.write_text(os.path.join(folder, "fit.json"), json.dumps(dict(result, target=t.__dict__), indent=1))
-    others = [(b, float(m["cmod_at_peak_mm"])) for b, m in sorted(measured_beams(data).items()) if b != on]
-    run_cases([c for b, x in others for c in cases(b, result["material"], x, range(1, seeds + 1))], folder,
+    io.write_text(os.path.join(folder, "fit.json"), json.dumps(dict(result, target=t.__dict__, L0=L0), indent=1))
+    others = [(b, float(m["cmod_at_peak_mm"])) for b, m in predicted_beams(data, on, predict)]
+    run_cases([c for b, x in others for c in cases(b, result["material"], x, range(1, seeds + 1), make)], folder,
               jobs=jobs, log=log)
     return result
 
 
-def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int, draw: bool = False) -> List[Tuple[str, dict]]:
+def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int, draw: bool = False,
+               predict=None) -> List[Tuple[str, dict]]:
     """(name, curve_report.summarize) of each beam predicted by the fit on b;
     draw: also OUT/on_{b}/{name}.png, the seeds over the measurement."""
     folder, found = os.path.join(out, f"on_{beam_name(*b)}"), []
-    for other, m in sorted(measured_beams(data).items()):
-        if other == b:
-            continue
+    for other, m in predicted_beams(data, b, predict):
         curve, name = measured_curve(data, m), beam_name(*other)
         predicted = [gauge_curve(os.path.join(folder, "cases", f"{name}_s{s}")) for s in range(1, seeds + 1)]
         found.append((name, against_measured(predicted, curve, m)))
@@ -149,14 +159,14 @@ def _predicted(out: str, data: str, b: Tuple[float, float], seeds: int, draw: bo
     return found
 
 
-def error_lines(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -> List[str]:
+def error_lines(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int, predict=None) -> List[str]:
     """One row per (calibration beam, predicted beam): each quantity's error,
     predicted mean over measured minus one."""
     keys = ["peak_kN", *(f"load_at_{m:g}" for m in MULTIPLES), "work_J"]
     lines = ["| calibrated on | predicted | peak | " + " | ".join(f"load at {m:g} CMOD_peak" for m in MULTIPLES)
              + f" | work to {MULTIPLES[-1]:g} CMOD_peak |", "|---|---|" + "---|" * len(keys)]
     for b in on:
-        for name, s in _predicted(out, data, b, seeds):
+        for name, s in _predicted(out, data, b, seeds, predict=predict):
             cells = [s["predicted"][k][0] / s["measured"][k] - 1 for k in keys]
             lines.append(f"| {beam_name(*b)} | {name} | " +
                          " | ".join("" if math.isnan(c) else f"{c:+.1%}" for c in cells) + " |")
@@ -164,11 +174,12 @@ def error_lines(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: i
             "not measured):", "", *lines]
 
 
-def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -> str:
-    """OUT/transfer.md: each fit, then each transferred prediction's table."""
+def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int, predict=None) -> str:
+    """OUT/transfer.md: each fit, then each transferred prediction's table
+    (of the beams in `predict`, if given)."""
     lines = ["# Calibrate on one beam, predict the other two (Grégoire et al. 2013)", "",
              "By the protocol of [PROTOCOL.md](PROTOCOL.md), committed before any run. Written by "
-             "`ldem study beams transfer`.", "", *error_lines(out, data, on, seeds), ""]
+             "`ldem study beams transfer`.", "", *error_lines(out, data, on, seeds, predict), ""]
     for b in on:
         folder = os.path.join(out, f"on_{beam_name(*b)}")
         with open(os.path.join(folder, "fit.json")) as f:
@@ -176,11 +187,12 @@ def report(out: str, data: str, on: Sequence[Tuple[float, float]], seeds: int) -
         best = result["rounds"][result["round"]]
         lines += [f"## Calibrated on {beam_name(*b)}", "",
                   f"Fitted {', '.join(result['fitted'])} in {len(result['rounds'])} rounds "
-                  f"({'converged' if result['converged'] else 'NOT converged'}): " +
+                  f"({'converged' if result['converged'] else 'NOT converged'})" +
+                  ("" if result.get("L0", BEAMS_L0) == BEAMS_L0 else f" at L0 = {result['L0'] * 1e3:g} mm") + ": " +
                   ", ".join(f"{k} = {best['material'][k]:.5g}" for k in result["fitted"]) +
                   "; the model's " + ", ".join(f"{q} {e:+.2%}" for q, e in zip(("peak", "work"), best["error"])) +
                   " of the measured.", ""]
-        for name, s in _predicted(out, data, b, seeds, draw=True):
+        for name, s in _predicted(out, data, b, seeds, draw=True, predict=predict):
             lines += [f"### {name}, predicted", "", *table_lines(s), "",
                       f"![{name} predicted, calibrated on {beam_name(*b)}](on_{beam_name(*b)}/{name}.png)", ""]
     text = "\n".join(lines)
