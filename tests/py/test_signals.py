@@ -112,3 +112,29 @@ def test_a_study_and_its_workers_stop_within_seconds(tmp_path):
     assert [line for line in ps.splitlines() if not line.startswith("Z")] == [], ps  # the workers ended too
     for c in curves():
         assert json.loads((c.parent / "summary.json").read_text())["status"] == "interrupted"
+
+
+@pytest.mark.parametrize("argv,kept", [
+    (["study", "validation", "l_panel", "--root", "ROOT"], "finished cases are kept in ROOT/results/validation/l_panel"),
+    (["study", "fracture-energy", "ROOT/m.json"], "finished cases are kept in ROOT/fracture_energy"),
+    (["study", "calibration", "--fc", "30e6", "--L0", "0.01", "--out", "ROOT/m.json"], "nothing kept")])
+def test_an_interrupted_study_names_the_folder_that_keeps_its_cases(tmp_path, monkeypatch, capsys, argv, kept):
+    """The message of a signal names the folder a study's cases are kept in
+    when the folder is the study's default (it said "nothing kept" of a
+    validation that had kept its cases and a checkpoint), and a calibration,
+    whose --out is its result file and whose prisms run again, keeps nothing."""
+    from ldem import cli
+    from ldem.signals import Terminated
+    from ldem.study import concrete, fracture_energy, validation
+
+    def stop(*args, **kw):
+        raise Terminated()
+    for module, name in ((validation, "predict"), (fracture_energy, "measure"), (concrete, "calibrate")):
+        monkeypatch.setattr(module, name, stop)
+    (tmp_path / "m.json").write_text(json.dumps({"material": {}, "L0": 0.01}))
+    root = str(tmp_path)
+    assert cli.main([a.replace("ROOT", root) for a in argv]) == 143
+    err = capsys.readouterr().err
+    assert err.strip().splitlines()[-1].endswith(f"terminated (SIGTERM): {kept.replace('ROOT', root)}"
+                                                 + ("; the same command continues the others" if "kept in" in kept
+                                                    else "")), err

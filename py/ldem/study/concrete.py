@@ -182,7 +182,8 @@ def add_arguments(c) -> None:
     parameter_option(c, "rho", "--rho", "; the concrete's")
     parameter_option(c, "L0", "--L0", "; the module of the structure to model", default=None, required=True)
     c.add_argument("--seeds", type=int, default=3, help="prisms per round (seeds 1..N)")
-    c.add_argument("--out", default="", metavar="FILE", help="write the result here (JSON)")
+    # dest "result": a file, not a study folder of cases (an interrupted calibration keeps nothing)
+    c.add_argument("--out", dest="result", default="", metavar="FILE", help="write the result here (JSON)")
 
 
 def cmd_calibration(args) -> int:
@@ -194,8 +195,8 @@ def cmd_calibration(args) -> int:
     result["sources"] = sources
     text = json.dumps(result, indent=1)
     print(text)
-    if args.out:
-        io.write_text(args.out, text + "\n")
+    if args.result:
+        io.write_text(args.result, text + "\n")
     return 0
 
 

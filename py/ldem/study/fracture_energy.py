@@ -190,7 +190,8 @@ def cmd_fracture_energy(args) -> int:
     if "material" not in calibration or "L0" not in calibration:
         raise ValueError(f"{args.material} is not a calibration (no 'material' and 'L0'): "
                          "`ldem study calibration --out` writes one")
-    out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.material)), "fracture_energy")
+    # args.out resolved: a signal's message (cli.what_is_kept) names the folder that keeps the finished cases
+    out = args.out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.material)), "fracture_energy")
     r = measure(calibration, args.seeds, out, args.jobs, lambda s: print(s, flush=True))
     name = os.path.basename(os.path.dirname(os.path.abspath(args.material)))
     io.write_text(os.path.join(out, "fracture_energy.json"), json.dumps(r, indent=1) + "\n")

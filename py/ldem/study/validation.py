@@ -240,7 +240,8 @@ def add_arguments(v) -> None:
 
 
 def cmd_validation(args) -> int:
-    out = args.out or os.path.join(args.root, "results", "validation", args.name)
+    # args.out resolved: a signal's message (cli.what_is_kept) names the folder that keeps the finished cases
+    out = args.out = args.out or os.path.join(args.root, "results", "validation", args.name)
     log = lambda s: print(s, flush=True)  # noqa: E731
     if args.calibrate_only:
         material(args.root, args.name, out, log)
