@@ -110,7 +110,7 @@ def test_bad_input_is_one_line_before_anything_runs(tmp_path, cli):
 
 
 def test_whole_curves_and_transfer_refuse_bad_input_in_one_line(cli, tmp_path):
-    """No calibrated concrete beside OUT, or a beam that was not measured: rc 2
+    """No calibrated concrete beside OUT, a --start that is not there, or a beam that was not measured: rc 2
     and one line naming it, before anything runs."""
     data = os.path.join(ROOT, "..", "shared", "data", "gregoire2013")
     out = tmp_path / "study" / "whole_curves"
@@ -119,4 +119,7 @@ def test_whole_curves_and_transfer_refuse_bad_input_in_one_line(cli, tmp_path):
     if os.path.isdir(data):
         r = cli("study", "beams", "transfer", "--on", "D60_n0", "--out", str(tmp_path / "t"), "--data", data)
         assert r.returncode == 2 and r.stderr.count("\n") == 1 and "unknown beam 'D60_n0'" in r.stderr
+        r = cli("study", "beams", "transfer", "--start", str(tmp_path / "none.json"), "--out", str(tmp_path / "t"),
+                "--data", data)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1 and "none.json not found" in r.stderr
     assert not out.exists()

@@ -141,7 +141,9 @@ def transfer(args) -> None:
     data = args.data or default_data(args.out)
     names = {beam_name(*b): b for b in measured_beams(data)}
     on = [names[n] for n in parse_names(args.on, names, "beam", ", ".join(names))]
-    with open(calibrated_material(args.out)) as f:
+    if args.start and not os.path.isfile(args.start):
+        raise ValueError(f"--start {args.start} not found (a material JSON: `ldem study calibration --out` writes one)")
+    with open(args.start or calibrated_material(args.out)) as f:
         start = json.load(f)["material"]
     predict = None if args.predict is None else \
         [names[n] for n in parse_names(args.predict, names, "beam", ", ".join(names))]
@@ -206,6 +208,8 @@ def add_arguments(b) -> None:
     t = command("transfer", transfer, "calibrate on one measured beam, predict the other two, by "
                                       "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
     t.add_argument("--on", default="D50_n0,D50_n0.5,D100_n0.2", help="the beams to calibrate on, in turn")
+    t.add_argument("--start", default="", metavar="MATERIAL.json", help="the fit's start (default: "
+                   "../calibrated/material.json beside OUT, the calibrated concrete)")
     t.add_argument("--predict", default=None, help="the beams to predict (default: every other measured one)")
     parameter_option(t, "L0", "--L0", "; of every run (the gauges must be whole modules)", default=L0)
     add_seeds(t, "predicted beam")
