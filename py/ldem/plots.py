@@ -233,14 +233,19 @@ def state_handles(counts=None) -> list:
             for s in (UNDAMAGED, DAMAGED, BROKEN)]
 
 
+LEGEND_STRIP = 0.42  # [in]: a one-row legend's height at the foot of a crack picture
+
+
 def crack_figure_from_slice(seg, state, path: str, title: str = ""):
     """The crack picture of a slice (draw_slice), saved to path; returns the figure."""
     # A cube's slice is square: 5.6 x 6.2 in; a beam's is flat, and its figure with it.
     aspect = np.ptp(seg[:, :, 1]) / max(np.ptp(seg[:, :, 0]), 1e-30) if len(seg) else 1.0
-    fig, ax = plt.subplots(figsize=(5.6, min(6.2, 1.6 + 4.6 * aspect)))
-    ax.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="upper center",
-              bbox_to_anchor=(0.5, -0.1 - 0.25 * max(0.0, 1 - aspect)), ncol=3)
+    height = min(6.2, 1.6 + 4.6 * aspect)
+    fig, ax = plt.subplots(figsize=(5.6, height))
+    # The legend in a strip of its own at the figure's foot, below the x label
+    # (under the axes it sat on the label of a slender beam's flat slice).
+    fig.legend(handles=state_handles(draw_slice(ax, seg, state)), loc="lower center", ncol=3)
     ax.set_title(title or "central slice")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, LEGEND_STRIP / height, 1, 1))
     save(fig, path)
     return fig

@@ -128,6 +128,21 @@ def test_the_crack_picture_draws_undamaged_bars_faint_and_thin_on_a_dense_slice(
     assert (tmp_path / "cracks.png").stat().st_size > 0
 
 
+@pytest.mark.parametrize("modules", [(81, 10), (12, 12), (40, 20)], ids=["slender beam", "cube", "panel"])
+def test_the_crack_picture_s_legend_clears_the_axes_and_its_labels(tmp_path, modules):
+    """The legend sits below the x label, apart from the axes, on a slender
+    beam's flat slice as on a cube's (it overlapped the beam's label)."""
+    nx, nz = modules
+    seg = np.array([[[i * 0.01, k * 0.01], [(i + 1) * 0.01, k * 0.01]] for i in range(nx) for k in range(nz + 1)])
+    fig = plots.crack_figure_from_slice(seg, np.zeros(len(seg), np.uint8), str(tmp_path / "cracks.png"))
+    r = fig.canvas.get_renderer()
+    legend = fig.legends[0].get_window_extent(r)
+    for artist in (fig.axes[0], fig.axes[0].xaxis.label, *fig.axes[0].get_xticklabels()):
+        box = artist.get_window_extent(r)
+        assert not legend.overlaps(box) and legend.y1 <= box.y0, artist
+    assert legend.y0 >= 0  # inside the figure
+
+
 def _luminance(rgb) -> float:
     """Relative luminance (WCAG 2): 0 black, 1 white."""
     c = np.asarray(rgb[:3], float)
