@@ -160,7 +160,7 @@ def report_lines(r: dict, name: str) -> List[str]:
              "[N/m] | end deflection [mm] | balance | steps | wall [s] |", "|---|---|---|---|---|---|---|---|---|"]
     for s in r["seeds"]:
         lines.append(f"| {s['seed']} | {s['peak_kN']:.4g} | {s['G_F']:.1f} | {s['dissipated_over_ligament']:.1f} | "
-                     f"{s['stored_over_ligament']:.1f} | {s['end_deflection_mm']:.3g} | {s['balance']:.1e} | {s['steps']:,} | {s['wall_s']:.0f} |")
+                     f"{s['stored_over_ligament']:.1f} | {s['end_deflection_mm']:.2f} | {s['balance']:.1e} | {s['steps']:,} | {s['wall_s']:.0f} |")
     lines += ["", f"**G_F = {r['G_F_mean']:.1f} N/m** (CV {r['G_F_cv']:.3f}) for the {r['put_in_Gf_mean']:.1f} N/m "
                   f"put in (Gf_mean): {r['ratio'] - 1:+.1%}.", "",
               f"Cost: {r['cost']['wall_s'] / 60:.0f} min of one thread for {len(r['seeds'])} seeds, "
