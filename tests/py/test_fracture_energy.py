@@ -40,7 +40,8 @@ def test_the_work_of_fracture_is_the_area_under_the_load_over_the_ligament():
 
 def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
     stop = fe.LoadGone(0.02)  # no window: the last record alone
-    row = lambda t, support, platen: {"time_s": t, "stress_MPa": support, "stress_top_MPa": platen}  # noqa: E731
+    row = lambda t, support, platen: {"time_s": t, "stress_MPa": support, "stress_top_MPa": platen,  # noqa: E731
+                                      "broken_bars": 1}
     assert stop(row(0.0, 0.0, 0.0))
     assert stop(row(1.0, 1.0, 1.0))
     assert stop(row(2.0, 0.01, 0.5))  # the platen still pushes
@@ -52,18 +53,18 @@ def test_load_gone_waits_through_a_ringing_load_s_dips():
     records; averaged over the window (1 s here) it is not gone until its
     mean is: 0.3 + 0.35 sin(...) over whole periods of 0.2 s."""
     stop = fe.LoadGone(0.02, window=1.0)
-    assert stop({"time_s": 0.0, "stress_MPa": 1.0, "stress_top_MPa": 1.0})
+    assert stop({"time_s": 0.0, "stress_MPa": 1.0, "stress_top_MPa": 1.0, "broken_bars": 0})
     dips = 0
     for k in range(1, 400):
         t = k * 0.01
         load = 0.3 + 0.35 * math.sin(2 * math.pi * t / 0.2)
         dips += load < 0.02
-        assert stop({"time_s": t, "stress_MPa": load, "stress_top_MPa": load})
+        assert stop({"time_s": t, "stress_MPa": load, "stress_top_MPa": load, "broken_bars": 3})
     assert dips > 50
     t, going = 4.0, True
     while going:  # then the load is gone: stops one window later, not before
         t += 0.01
-        going = stop({"time_s": t, "stress_MPa": 0.0, "stress_top_MPa": 0.0})
+        going = stop({"time_s": t, "stress_MPa": 0.0, "stress_top_MPa": 0.0, "broken_bars": 3})
     assert 4.0 + 0.8 < t < 4.0 + 1.02
 
 

@@ -31,15 +31,15 @@ import json
 import math
 import os
 import statistics
-from collections import deque
 from typing import List
 
 import numpy as np
 
-from .. import io
+from .. import _core, io
 from ..specimen import SpecimenTest
 from .cases import Named
 from .executors import run_cases
+from .options import seed_count
 from .registry import Study, register
 
 HALF_D = 0.025  # half the smallest depth [m]: RILEM's beam in half size, D = 50 mm
@@ -76,33 +76,36 @@ def rilem_beam(material: dict, L0: float, seed: int) -> SpecimenTest:
 
 
 class LoadGone:
-    """Stops a run once, past its peak, the load averaged over the last
-    `window` seconds (two fundamental periods) is below `fraction` of the peak,
-    at the supports and at the platen: a load that rings dips below the
-    fraction long before it is gone (Malvar-Warren S2's concrete, 15 % of its
-    bars perfectly brittle, stopped at 0.8 mm on one record's dip)."""
+    """Stops a run once, past its peak, the load is gone at the supports and
+    at the platen: the core's load-loss test on each (_core.LoadLossDetector:
+    bars broken, and the load averaged over the last `window` seconds, two
+    fundamental periods, below `fraction` of the peak). A load that rings dips
+    below the fraction long before it is gone (Malvar-Warren S2's concrete,
+    15 % of its bars perfectly brittle, stopped at 0.8 mm on one record's dip)."""
 
     def __init__(self, fraction: float = STOP, window: float = 0.0):
-        self.fraction, self.window, self.peak, self.recent = fraction, window, 0.0, deque()
+        self.peak = 0.0
+        self.support, self.platen = (_core.LoadLossDetector(window, fraction) for _ in range(2))
 
     def __call__(self, row) -> bool:
-        t = row["time_s"]
+        t, broken = row["time_s"], row["broken_bars"]
         self.peak = max(self.peak, row["stress_MPa"])
-        self.recent.append((t, row["stress_MPa"], row["stress_top_MPa"]))
-        while self.recent[0][0] < t - self.window:
-            self.recent.popleft()
-        n = len(self.recent)
-        support, platen = (sum(r[k] for r in self.recent) / n for k in (1, 2))
-        return not (self.peak > 0 and t >= self.window and support < self.fraction * self.peak and
-                    platen < self.fraction * self.peak)
+        support = self.support.update(t, row["stress_MPa"], self.peak, broken)
+        platen = self.platen.update(t, row["stress_top_MPa"], self.peak, broken)
+        return not (self.peak > 0 and support and platen)
+
+
+def ligament(D: float) -> float:
+    """(D - a) b [m^2], b = D."""
+    return (1 - NOTCH) * D * D
 
 
 def work_of_fracture(curve: dict, D: float) -> float:
     """G_F [N/m]: the work of the load over the platen's deflection, W = int F
-    d(delta) by the trapezoidal rule, over the ligament (D - a) b = D^2 / 2."""
+    d(delta) by the trapezoidal rule, over the ligament."""
     F = np.asarray(curve["stress_MPa"]) * 1e6  # the force of area 1 [N]
     delta = np.asarray(curve["mean_strain"]) * D
-    return float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(delta))) / ((1 - NOTCH) * D * D)
+    return float(np.sum(0.5 * (F[1:] + F[:-1]) * np.diff(delta))) / ligament(D)
 
 
 class RilemCase(Named):
@@ -125,10 +128,9 @@ def seed_row(case: str, D: float, seed: int) -> dict:
     the elastic energy left at the stop over the ligament, where it stopped,
     its energy balance and its cost."""
     s, c = io.read_summary(os.path.join(case, "summary.json")), io.read_curve(os.path.join(case, "curve.csv"))
-    ligament = (1 - NOTCH) * D * D
     return {"seed": seed, "peak_kN": s["peak_stress_MPa"] * 1e3, "G_F": work_of_fracture(c, D),
-            "dissipated_over_ligament": s["fracture_energy_J"] / ligament,
-            "stored_over_ligament": float(c["elastic_J"][-1]) / ligament,
+            "dissipated_over_ligament": s["fracture_energy_J"] / ligament(D),
+            "stored_over_ligament": float(c["elastic_J"][-1]) / ligament(D),
             "end_deflection_mm": float(c["mean_strain"][-1]) * D * 1e3, "stop": s["stop_reason"],
             "balance": s["energy_balance_error"], "steps": s["steps"], "n_bars": s["n_bars"], "wall_s": s["wall_s"]}
 
@@ -195,8 +197,6 @@ def add_arguments(c) -> None:
 
 
 def cmd_fracture_energy(args) -> int:
-    if args.seeds < 1:
-        raise ValueError(f"--seeds must be at least 1 (got {args.seeds})")
     try:
         with open(args.material) as f:
             calibration = json.load(f)
@@ -207,7 +207,7 @@ def cmd_fracture_energy(args) -> int:
                          "`ldem study calibration --out` writes one")
     # args.out resolved: a signal's message (cli.what_is_kept) names the folder that keeps the finished cases
     out = args.out = args.out or os.path.join(os.path.dirname(os.path.abspath(args.material)), "fracture_energy")
-    r = measure(calibration, args.seeds, out, args.jobs, lambda s: print(s, flush=True))
+    r = measure(calibration, seed_count(args), out, args.jobs, lambda s: print(s, flush=True))
     name = os.path.basename(os.path.dirname(os.path.abspath(args.material)))
     io.write_text(os.path.join(out, "fracture_energy.json"), json.dumps(r, indent=1) + "\n")
     figure(out, r, name)
