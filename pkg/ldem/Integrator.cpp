@@ -120,4 +120,14 @@ double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, 
     })[0];
 }
 
+double ownKineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                        double s) {
+    return nodeSum<1>(lat, [&](std::int32_t i, std::array<double, 1>& e) {
+        const unsigned held = mask[i];
+        const double wx = (held & 1) ? 0 : v.x[i] - s * u.x[i], wy = (held & 2) ? 0 : v.y[i] - s * u.y[i],
+                     wz = (held & 4) ? 0 : v.z[i] - s * u.z[i];
+        e[0] += 0.5 * lat.mass[i] * (wx * wx + wy * wy + wz * wz);
+    })[0];
+}
+
 }  // namespace ldem

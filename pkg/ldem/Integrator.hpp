@@ -60,4 +60,13 @@ double weightWork(const Lattice& lat, const std::vector<std::uint8_t>& mask, dou
 // Sum of 1/2 m v^2 over the DOFs not set in mask, of the owned nodes (Slab.hpp).
 double kineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v);
 
+// The kinetic energy of the motion that is not the drive's quasi-static one,
+//   K_own = sum 1/2 m |v - s u|^2,   s = U'/U,
+// over the same DOFs (U the drive's displacement, U' its velocity). A linear
+// specimen led from rest follows its drive as u = U phi, so v = U' phi = s u:
+// K_own is zero for it at any rate, and a running crack or a ringing mode is
+// what it counts (dynamics/CrackPace.hpp). s = 0 (the drive at rest) gives K.
+double ownKineticEnergy(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                        double s);
+
 }  // namespace ldem

@@ -97,8 +97,8 @@
       "lattice moves by itself (crack_kinetic; 1, the default: never slowed; 0.0625 on the cubes: "          \
       "dynamics/CrackPace.hpp)")                                                                             \
     X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
-      "tail_drive adaptive: the kinetic energy, over the external work, above which the drive slows to "     \
-      "crack_pace (a tenth of the quasi-static flag's 1 % at the peak)")
+      "tail_drive adaptive: the kinetic energy less the drive's quasi-static motion, over the external "     \
+      "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)")
 
 // Opening control (dynamics/ServoDrive.hpp).
 #define LDEM_SERVO_PARAMETERS(X)                                                                             \

@@ -229,6 +229,8 @@ CurvePoint Simulation::measure() const {
     const BarEnergies e = barEnergies(lat_, u_, law_);
     p.elastic = e.elastic, p.fracture = e.fracture, p.damaged = e.damaged, p.broken = e.broken;
     p.kinetic = kineticEnergy(lat_, pre_.mask, v_);
+    const double U = driveNow();
+    p.kineticOwn = ownKineticEnergy(lat_, pre_.mask, u_, v_, U != 0 ? (U - driveBefore()) / (dt_ * U) : 0.0);
     // The weight's work is the drive's companion: the external work (Integrator.hpp, weightWork).
     p.externalWork = externalWork_ + weightWork(lat_, pre_.mask, gz_, dt_, u_, v_);
     // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
@@ -419,6 +421,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
     } else if (!g.pendingAdvance) {
         throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
     }
+    g.summary.drivePeriodsToEpsP = periodsToEpsP(load_.strainRate, mat_.epsP, freq_.omega1);
     RunSummary& s = g.summary;
     // The peak: the largest record, a load cell's mean over its interval
     // (measure()), at the drive's displacement at the record.

@@ -114,6 +114,8 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
 # too; this says it before any file is opened), and a run whose kinetic energy
 # at the peak is above KINETIC_AT_PEAK_LIMIT of the work is flagged.
 KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
+# Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer fundamental periods is warned.
+RATE_PERIODS = _core.RATE_PERIODS
 
 
 def refuse_drive_jump(test, dt: float) -> None:
@@ -124,9 +126,11 @@ def refuse_drive_jump(test, dt: float) -> None:
 
 def quasi_static(summary) -> dict:
     """The run's loading speed for summary.json, as the core measured it: the
-    drive's step over eps_p and the kinetic energy over the external work at
-    the record of the largest stress; flagged above KINETIC_AT_PEAK_LIMIT."""
+    drive's step over eps_p, the fundamental periods it takes to strain eps_p
+    (rule (c): at least RATE_PERIODS) and the kinetic energy over the external
+    work at the record of the largest stress; flagged above KINETIC_AT_PEAK_LIMIT."""
     return {"drive_step_over_eps_p": summary.drive_step_over_eps_p,
+            "periods_to_eps_p": summary.drive_periods_to_eps_p, "rate_periods": RATE_PERIODS,
             "kinetic_over_work_at_peak": summary.kinetic_over_work_at_peak,
             "kinetic_limit": KINETIC_AT_PEAK_LIMIT, "flagged": summary.quasi_static_flagged}
 

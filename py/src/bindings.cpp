@@ -219,6 +219,8 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("stress_loaded", &CurvePoint::stressLoaded, "the same on the loaded group, negated [Pa]")
         .def_readonly("external_work", &CurvePoint::externalWork)
         .def_readonly("kinetic", &CurvePoint::kinetic)
+        .def_readonly("kinetic_own", &CurvePoint::kineticOwn,
+                      "the kinetic energy less the drive's quasi-static motion, 1/2 sum m |v - (U'/U) u|^2 [J]")
         .def_readonly("elastic", &CurvePoint::elastic)
         .def_readonly("fracture", &CurvePoint::fracture)
         .def_readonly("damping", &CurvePoint::damping)
@@ -249,11 +251,14 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("energy_error", &RunSummary::energyError)
         .def_readonly("steps", &RunSummary::steps)
         .def_readonly("drive_step_over_eps_p", &RunSummary::driveStepOverEpsP)
+        .def_readonly("drive_periods_to_eps_p", &RunSummary::drivePeriodsToEpsP,
+                      "N of rule (c): the fundamental periods the drive takes to strain eps_p")
         .def_readonly("kinetic_over_work_at_peak", &RunSummary::kineticOverWorkAtPeak)
         .def_readonly("quasi_static_flagged", &RunSummary::quasiStaticFlagged)
         .def_readonly("stop_reason", &RunSummary::stopReason);
     m.attr("DRIVE_STEP_LIMIT") = kDriveStepLimit;
     m.attr("KINETIC_AT_PEAK_LIMIT") = kKineticAtPeakLimit;
+    m.attr("RATE_PERIODS") = kRatePeriods;
     m.def("drive_step", &driveStep, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
           "the drive's displacement in one step over eps_p x the gauge length");
     m.def("refuse_drive_jump", &refuseDriveJump, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),

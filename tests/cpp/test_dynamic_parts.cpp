@@ -22,7 +22,7 @@ CurvePoint recordAt(int k) {
     p.step = 100 * k, p.time = 1e-4 * k, p.meanStrain = 1e-5 * k;
     p.stress = 2e6 * std::exp(-0.2 * k) * (1 + 0.3 * std::sin(1.7 * k));
     p.fracture = 0.1 * std::sqrt(double(k)), p.broken = k > 3 ? 10 * k : 0;
-    p.externalWork = 1.0 + 0.2 * k, p.kinetic = 0.01 * (1 + std::sin(0.9 * k));
+    p.externalWork = 1.0 + 0.2 * k, p.kinetic = 0.01 * (1 + std::sin(0.9 * k)), p.kineticOwn = 0.5 * p.kinetic;
     return p;
 }
 

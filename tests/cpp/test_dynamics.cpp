@@ -402,6 +402,21 @@ TEST(Dynamics, CentralDifferenceStepMatchesTheSpecFormula) {
         vc.x[0] = v.x[0], vc.y[0] = v.y[0], vc.z[0] = v.z[0];
         EXPECT_DOUBLE_EQ(kineticEnergy(cell, held, vc), 0.5 * cell.mass[0] * v.z[0] * v.z[0]);
     }
+    {  // ownKineticEnergy: the motion v = s u that follows the drive is not counted, what is added to it is
+        const Lattice cell = buildCubicLattice(2, 1, 1, 0.1, Material{});
+        const std::vector<std::uint8_t> none(cell.numNodes(), 0);
+        const double s = 4000.0;  // U'/U [1/s]
+        Field3 uc(cell.numNodes()), vc(cell.numNodes()), w(cell.numNodes());
+        for (std::int32_t i = 0; i < cell.numNodes(); ++i) {
+            uc.x[i] = 1e-6 * (i + 1), uc.y[i] = -2e-6 * i, uc.z[i] = 3e-6 * (i % 3);
+            w.x[i] = 0.01 * (i % 2), w.y[i] = 0, w.z[i] = -0.02 * (i % 5);
+            vc.x[i] = s * uc.x[i] + w.x[i], vc.y[i] = s * uc.y[i] + w.y[i], vc.z[i] = s * uc.z[i] + w.z[i];
+        }
+        EXPECT_NEAR(ownKineticEnergy(cell, none, uc, vc, s), kineticEnergy(cell, none, w), 1e-15);
+        const double Kw = kineticEnergy(cell, none, w);
+        EXPECT_GT(std::abs(kineticEnergy(cell, none, vc) - Kw), 0.05 * Kw);  // the drive's share is real
+        EXPECT_DOUBLE_EQ(ownKineticEnergy(cell, none, uc, vc, 0.0), kineticEnergy(cell, none, vc));
+    }
 
     // Undamped oscillator m x'' = -k x: central differences give
     // x_n = A cos(n Omega) with cos(Omega) = 1 - (omega dt)^2 / 2 exactly.

@@ -182,7 +182,7 @@ def test_more_threads_than_cores_are_clamped_with_a_warning(cli, tmp_path):
     import os
 
     out = tmp_path / "t"
-    r = cli("cube", "--size", "0.04", "--strain-rate", "0.5", "--stop-at", "load_loss", "--threads", "1000",
+    r = cli("cube", "--size", "0.04", "--strain-rate", "0.2", "--stop-at", "load_loss", "--threads", "1000",
             "--out", str(out), "--no-progress", "--no-plots")
     cores = os.cpu_count()
     assert r.returncode == 0, r.stderr

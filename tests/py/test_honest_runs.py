@@ -55,10 +55,31 @@ def test_a_run_too_fast_for_quasi_static_is_flagged(cli, tmp_path):
     q = json.loads((fast / "summary.json").read_text())["quasi_static"]
     assert q["flagged"] and 0.012 < q["kinetic_over_work_at_peak"] < 0.04 and q["kinetic_limit"] == 0.01
     assert 0.05 < q["drive_step_over_eps_p"] < 0.09  # 2 /s x 2.15e-6 s / 6.3e-5
+    assert 0.2 < q["periods_to_eps_p"] < 0.6 and "fewer than the 3 of rule (c)" in r.stderr
     r = cli("cube", *SMALL, "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(slow))
     assert r.returncode == 0 and "quasi-static" not in r.stderr, r.stderr
     q = json.loads((slow / "summary.json").read_text())["quasi_static"]
     assert not q["flagged"] and 0.002 < q["kinetic_over_work_at_peak"] < 0.01
+
+
+def test_rule_c_counts_the_periods_the_drive_takes_to_strain_eps_p(cli, tmp_path):
+    """Rule (c) (pkg/ldem/dynamics/QuasiStatic.hpp): N = eps_p omega_1 / (2 pi strain_rate) in summary.json;
+    a drive slower than N = 3 is not warned, a faster one is, with the factor that meets the rule."""
+    import math
+    runs = {}
+    for rate in ("0.02", "0.5"):
+        out = tmp_path / rate
+        r = cli("cube", *SMALL, "--strain-rate", rate, "--stop-at", "load_loss", "--out", str(out))
+        assert r.returncode == 0, r.stderr
+        runs[rate] = (r.stderr, json.loads((out / "summary.json").read_text()))
+    for rate, (err, s) in runs.items():
+        q = s["quasi_static"]
+        assert q["rate_periods"] == 3
+        assert q["periods_to_eps_p"] == pytest.approx(6.3e-5 * s["omega1_rad_s"] / (2 * math.pi * float(rate)), rel=1e-12)
+    assert runs["0.02"][1]["quasi_static"]["periods_to_eps_p"] > 3 and "rule (c)" not in runs["0.02"][0]
+    q = runs["0.5"][1]["quasi_static"]
+    assert q["periods_to_eps_p"] < 3
+    assert f"a strain rate {q['periods_to_eps_p'] / 3:.2g} times this one meets it" in runs["0.5"][0]
 
 
 @pytest.mark.parametrize("args,message", [

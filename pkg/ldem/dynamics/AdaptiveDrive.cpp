@@ -69,7 +69,7 @@ void AdaptiveTailDrive::record(const DriveRecord& r) {
         tail_.start(now(p.time, r.dt), before(p.time, r.dt), p.fracture);
     }
     if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, r.summary.peakStress);
-    else if (pace_.on()) pace_.record(p.kinetic, p.externalWork, p.fracture, r.summary.loadLoss.reached(),
+    else if (pace_.on()) pace_.record(p.kineticOwn, p.externalWork, p.fracture, r.summary.loadLoss.reached(),
                                       r.summary.peakStress);
 }
 

@@ -18,6 +18,7 @@ struct CurvePoint {
     double stressLoaded = 0;  // the same on the loaded group, negated [Pa]
     std::vector<double> probes;  // the specimen's Measures::probes [m]
     double externalWork = 0, kinetic = 0, elastic = 0, fracture = 0, damping = 0;  // [J]
+    double kineticOwn = 0;  // the kinetic energy less the drive's quasi-static motion (Integrator.hpp) [J]
     std::int64_t damaged = 0, broken = 0;
     double balanceResidual() const { return externalWork - (kinetic + elastic + fracture + damping); }
 };
@@ -41,6 +42,7 @@ struct RunSummary {
     double energyBalanceError = 0;  // max |residual| / the largest energy in play over the records
     bool energyError = false;     // energyBalanceError > energyTolerance
     double driveStepOverEpsP = 0;      // the drive's step (dynamics/QuasiStatic.hpp)
+    double drivePeriodsToEpsP = 0;     // N of rule (c): the fundamental periods to strain eps_p (QuasiStatic.hpp)
     double kineticOverWorkAtPeak = 0;  // K / W at the record of the largest stress (dynamics/QuasiStatic.hpp)
     bool quasiStaticFlagged = false;   // kineticOverWorkAtPeak > kKineticAtPeakLimit
     std::int64_t steps = 0;
