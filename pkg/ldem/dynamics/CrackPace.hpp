@@ -29,7 +29,7 @@
 // on the coarse notched beam of examples/beam_3pb.toml at 0.1 D/s that is near
 // 1e-3 of W, the pace braked and released in turn, and the peak rose by 11 %;
 // on K_own it stays within 0.05 % of the unpaced peak, and the quarter rate's
-// peak within 0.83 % (results/dynamics/criteria.md, "The pace on a notched beam").
+// peak within 0.83 % (results/dynamics/criteria.md, "The pace on K_own").
 // (While no bar softens there is no crack to follow: the smooth start is left alone.)
 // After the load loss the adaptive tail takes over (AdaptiveDrive.hpp) and the
 // pace returns to 1.
