@@ -327,3 +327,19 @@ def test_no_study_lock_is_committed():
     r = subprocess.run(["git", "-C", ROOT, "ls-files", "*.lock", "**/.lock"], capture_output=True, text=True)
     assert r.returncode == 0, r.stderr  # the suite runs on a checkout (CI: a fresh clone)
     assert r.stdout.strip() == "", r.stdout
+
+
+def test_worker_processes_take_the_largest_cubes_first():
+    """In worker processes the study's cases (listed smallest first) start
+    largest first, so that the run ends on small cases, not on a 0.96 m cube
+    alone on one core; a test with no size keeps its place after the cubes."""
+    from ldem.study.executors import largest_first
+
+    class NoSize:
+        pass
+
+    tests = study.size_effect_tests([0.12, 0.96, 0.48], 2, ["uniform"]) + [NoSize(), NoSize()]
+    todo = list(range(len(tests)))
+    order = [i for i, _ in largest_first(todo, [(t, f"d{i}") for i, t in enumerate(tests)])]
+    assert [getattr(tests[i], "size", None) for i in order] == [0.96, 0.96, 0.48, 0.48, 0.12, 0.12, None, None]
+    assert order == [2, 3, 4, 5, 0, 1, 6, 7]  # stable: seeds and the sizeless keep their order

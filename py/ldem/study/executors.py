@@ -119,7 +119,7 @@ def _run_in_processes(jobs, todo, args, finished):
     # spawn, not fork: a forked OpenMP runtime can hang in the child.
     with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
                                 initializer=_worker_signals) as pool:
-        futures = {pool.submit(_worker_case, t, d): i for i, (t, d) in zip(todo, args)}
+        futures = {pool.submit(_worker_case, t, d): i for i, (t, d) in largest_first(todo, args)}
         try:
             for fut in cf.as_completed(futures):
                 finished(futures[fut], fut.result())
@@ -131,6 +131,18 @@ def _run_in_processes(jobs, todo, args, finished):
                     if process.is_alive():
                         process.terminate()
             raise
+
+
+def largest_first(todo, args):
+    """(case index, (test, dir)) pairs, the largest cubes first (stable; a
+    test with no size keeps its place after them): the longest cases start
+    first and small ones fill the cores at the end, instead of a 0.96 m cube
+    left to run alone on one core while the others idle (longest processing
+    time first; the size-effect study lists its cases smallest first)."""
+    def size(pair):
+        s = getattr(pair[1][0], "size", 0.0)
+        return s if isinstance(s, (int, float)) else 0.0
+    return sorted(zip(todo, args), key=lambda pair: -size(pair))
 
 
 _in_case = False  # a worker process's: whether it runs a case now
