@@ -68,6 +68,10 @@
     X(double, strainRate, "strain_rate", 0.02, "1/s", Domain::positive(),                                    \
       "vertical strain rate at the most-pulled edge; the drive must move less than eps_p and more than 1e-6 "    \
       "eps_p in one step (dynamics/QuasiStatic.hpp)")                                                           \
+    X(double, ratePeriods, "rate_periods", 0.0, "", Domain::atLeast(0),                                      \
+      "rule (c) as the rate: > 0 drives at eps_p omega_1 / (2 pi N), so that the gauge strains by eps_p in N "  \
+      "of the specimen's own fundamental periods, and strain_rate is not used (3: the rule; "                  \
+      "dynamics/QuasiStatic.hpp); 0, the default: strain_rate")                                                \
     X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                           \
       "smooth start of the loading (0: two fundamental periods); at most eps_p / strain_rate: the ramp ends "   \
       "before the mean strain reaches eps_p / 2, before any bar can crack")

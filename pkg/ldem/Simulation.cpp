@@ -43,6 +43,10 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
             << "vertical axis: use at least 2 modules a side or hold the upper face laterally";
         throw std::invalid_argument(msg.str());
     }
+    if (load_.ratePeriods > 0) {  // rule (c) as the rate: from the specimen's own omega_1 (QuasiStatic.hpp)
+        load_.strainRate = rateForPeriods(load_.ratePeriods, mat_.epsP, freq_.omega1);
+        checkRelations(mat_, load_, run_, lat_.L0);  // the smooth start against the rate driven
+    }
     dampings_ = makeDampings(run_, DampingSetup{freq_.omega1, freq_.omegaMax, lat_.numBars(), lat_.numLayers()});
     const double limit = stableTimeStepLimit();
     if (run_.dt > limit) {
@@ -422,6 +426,7 @@ RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observe
         throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
     }
     g.summary.drivePeriodsToEpsP = periodsToEpsP(load_.strainRate, mat_.epsP, freq_.omega1);
+    g.summary.driveStrainRate = load_.strainRate;
     RunSummary& s = g.summary;
     // The peak: the largest record, a load cell's mean over its interval
     // (measure()), at the drive's displacement at the record.

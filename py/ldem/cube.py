@@ -88,7 +88,7 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
         raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
                          "test.simulation()")
     if sim.steps == 0:
-        refuse_drive_jump(test, sim.dt)
+        refuse_drive_jump(test, sim)
     rows = list(previous_rows)
 
     def observe(p):
@@ -118,10 +118,10 @@ KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
 RATE_PERIODS = _core.RATE_PERIODS
 
 
-def refuse_drive_jump(test, dt: float) -> None:
-    """Refuses a drive too fast (eps_p in one step) or too slow (a million steps to eps_p)."""
-    _core.refuse_drive_jump(test.strain_rate, dt, test.eps_p)
-    _core.refuse_drive_crawl(test.strain_rate, dt, test.eps_p)
+def refuse_drive_jump(test, sim) -> None:
+    """Refuses sim's drive (its strain_rate or rate_periods') too fast (eps_p in a step) or slow (1e6 steps)."""
+    _core.refuse_drive_jump(sim.strain_rate, sim.dt, test.eps_p)
+    _core.refuse_drive_crawl(sim.strain_rate, sim.dt, test.eps_p)
 
 
 def quasi_static(summary) -> dict:
@@ -129,7 +129,7 @@ def quasi_static(summary) -> dict:
     drive's step over eps_p, the fundamental periods it takes to strain eps_p
     (rule (c): at least RATE_PERIODS) and the kinetic energy over the external
     work at the record of the largest stress; flagged above KINETIC_AT_PEAK_LIMIT."""
-    return {"drive_step_over_eps_p": summary.drive_step_over_eps_p,
+    return {"strain_rate": summary.drive_strain_rate, "drive_step_over_eps_p": summary.drive_step_over_eps_p,
             "periods_to_eps_p": summary.drive_periods_to_eps_p, "rate_periods": RATE_PERIODS,
             "kinetic_over_work_at_peak": summary.kinetic_over_work_at_peak,
             "kinetic_limit": KINETIC_AT_PEAK_LIMIT, "flagged": summary.quasi_static_flagged}

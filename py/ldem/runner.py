@@ -66,7 +66,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
     sim = _set_up(test, out, simulation)
     if sim.steps == 0:
-        refuse_drive_jump(test, sim.dt)  # as test.run would, before any file is opened
+        refuse_drive_jump(test, sim)  # as test.run would, before any file is opened
     previous, wall_before = [], 0.0
     if restart:
         previous, wall_before = io.restore(test, sim, out, extend)

@@ -253,6 +253,8 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("drive_step_over_eps_p", &RunSummary::driveStepOverEpsP)
         .def_readonly("drive_periods_to_eps_p", &RunSummary::drivePeriodsToEpsP,
                       "N of rule (c): the fundamental periods the drive takes to strain eps_p")
+        .def_readonly("drive_strain_rate", &RunSummary::driveStrainRate,
+                      "the strain rate driven [1/s]: strain_rate, or eps_p omega_1 / (2 pi rate_periods)")
         .def_readonly("kinetic_over_work_at_peak", &RunSummary::kineticOverWorkAtPeak)
         .def_readonly("quasi_static_flagged", &RunSummary::quasiStaticFlagged)
         .def_readonly("stop_reason", &RunSummary::stopReason);
@@ -437,6 +439,8 @@ PYBIND11_MODULE(_core, m) {
         .def("measure", &Simulation::measure)
         .def_property_readonly("lattice", &Simulation::lattice, py::return_value_policy::reference_internal)
         .def_property_readonly("dt", &Simulation::dt)
+        .def_property_readonly("strain_rate", [](const Simulation& s) { return s.loading().strainRate; },
+                               "the strain rate driven [1/s]: strain_rate, or rule (c)'s from rate_periods")
         .def_property_readonly("dt_limit", &Simulation::stableTimeStepLimit)
         .def_property_readonly("omega1", [](const Simulation& s) { return s.frequencies().omega1; })
         .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })

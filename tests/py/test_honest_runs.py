@@ -8,6 +8,7 @@ import signal
 import subprocess
 import time
 
+import numpy as np
 import pytest
 
 import ldem
@@ -80,6 +81,27 @@ def test_rule_c_counts_the_periods_the_drive_takes_to_strain_eps_p(cli, tmp_path
     q = runs["0.5"][1]["quasi_static"]
     assert q["periods_to_eps_p"] < 3
     assert f"a strain rate {q['periods_to_eps_p'] / 3:.2g} times this one meets it" in runs["0.5"][0]
+
+
+def test_rate_periods_drives_at_rule_c_from_the_specimens_own_period(cli, tmp_path):
+    """rate_periods N > 0 (rule (c) as the rate): the drive strains eps_p in N fundamental periods,
+    eps_p omega_1 / (2 pi N), whatever strain_rate says; summary.json says the rate driven, and the
+    curve's mean strain grows at it past the smooth start."""
+    import math
+    out = tmp_path / "c"
+    r = cli("cube", *SMALL, "--strain-rate", "0.5", "--rate-periods", "3", "--stop-at", "load_loss", "--out", str(out))
+    assert r.returncode == 0, r.stderr
+    s = json.loads((out / "summary.json").read_text())
+    q = s["quasi_static"]
+    rate = 6.3e-5 * s["omega1_rad_s"] / (2 * math.pi * 3)
+    assert q["strain_rate"] == pytest.approx(rate, rel=1e-12) and q["periods_to_eps_p"] == pytest.approx(3, rel=1e-12)
+    assert "rule (c)" not in r.stderr  # 0.5 /s would be warned (above)
+    c = ldem.io.read_curve(str(out / "curve.csv"))
+    t, e = (np.asarray(c[k], dtype=float) for k in ("time_s", "mean_strain"))
+    # past the smooth start of two periods, before the peak
+    late = (t > 2 * (2 * math.pi / s["omega1_rad_s"])) & (e < 0.5 * s["strain_at_peak"])
+    assert late.sum() >= 3
+    assert np.diff(e[late]) / np.diff(t[late]) == pytest.approx(rate, rel=1e-7)  # (the CSV keeps 10 digits)
 
 
 @pytest.mark.parametrize("args,message", [

@@ -18,6 +18,7 @@ def coarse(name: str, L0: float, rate: float, final: float) -> ldem.SpecimenTest
         d = tomllib.load(f)
     d = copy.deepcopy(d)
     d["shape"]["L0"] = L0
+    d["loading"].pop("rate_periods", None)  # the file's rule (c) rate gives way to the test's
     d["loading"]["strain_rate"] = rate
     d["run"].update(final_strain=final, threads=1)
     return ldem.SpecimenTest(d)

@@ -40,6 +40,11 @@ inline double periodsToEpsP(double strainRate, double epsP, double omega1) {
     return epsP * omega1 / (2 * 3.14159265358979323846 * strainRate);
 }
 
+// Its inverse, the setting rate_periods: the strain rate whose drive strains eps_p in N periods.
+inline double rateForPeriods(double periods, double epsP, double omega1) {
+    return epsP * omega1 / (2 * 3.14159265358979323846 * periods);
+}
+
 // The drive's displacement in one step over eps_p x the gauge length.
 inline double driveStep(double strainRate, double dt, double epsP) { return strainRate * dt / epsP; }
 

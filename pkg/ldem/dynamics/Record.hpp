@@ -43,6 +43,7 @@ struct RunSummary {
     bool energyError = false;     // energyBalanceError > energyTolerance
     double driveStepOverEpsP = 0;      // the drive's step (dynamics/QuasiStatic.hpp)
     double drivePeriodsToEpsP = 0;     // N of rule (c): the fundamental periods to strain eps_p (QuasiStatic.hpp)
+    double driveStrainRate = 0;        // the strain rate driven: strain_rate, or rate_periods' [1/s]
     double kineticOverWorkAtPeak = 0;  // K / W at the record of the largest stress (dynamics/QuasiStatic.hpp)
     bool quasiStaticFlagged = false;   // kineticOverWorkAtPeak > kKineticAtPeakLimit
     std::int64_t steps = 0;
