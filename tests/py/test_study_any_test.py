@@ -70,6 +70,9 @@ def test_past_the_peak_stops_a_beam_and_counts_the_rows_before_a_restart():
     assert (stop.peak, stop.at) == (2.0, 2.0)
     assert stop({"stress_MPa": 1.1, "stress_top_MPa": 1.1, "mean_strain": 4.5}) is True   # past twice the peak's deflection, above half
     assert stop({"stress_MPa": 0.9, "stress_top_MPa": 0.9, "mean_strain": 4.5}) is False  # below half the peak: stop
+    further = beams.PastThePeak(rows, beyond=4.0)  # the L-panel's: to 4 times the peak's displacement
+    assert further({"stress_MPa": 0.9, "stress_top_MPa": 0.9, "mean_strain": 7.9}) is True
+    assert further({"stress_MPa": 0.9, "stress_top_MPa": 0.9, "mean_strain": 8.1}) is False
 
 
 def test_past_the_peak_waits_for_the_supports_to_carry_the_push():

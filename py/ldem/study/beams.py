@@ -141,15 +141,16 @@ def gauge_probe(mid: float, h: float, length: float) -> dict:
 
 class PastThePeak:
     """An observer that stops a beam's run once it is well past its peak: the
-    deflection twice that at the peak and the load below half the peak, once
+    deflection `beyond` (2) times that at the peak and the load below half the peak, once
     the supports have carried half the largest push (stress_top). (The
     load-loss test at a fraction of 0.5 would fire on the rising branch: its
     average over two fundamental periods is below half the current load early on.)
     rows: those recorded before a restart; opening: the CMOD instead of the
     deflection (under a CMOD servo the deflection may stall past the peak)."""
 
-    def __init__(self, rows=(), opening: bool = False):
+    def __init__(self, rows=(), opening: bool = False, beyond: float = 2.0):
         self.peak, self.at, self.pushed, self.key = 0.0, 0.0, 0.0, "cmod_m" if opening else "mean_strain"
+        self.beyond = beyond
         for row in rows:
             self(row)
 
@@ -160,7 +161,7 @@ class PastThePeak:
         # wave on its way (a specimen with far supports, the L-panel).
         self.pushed = max(self.pushed, row["stress_top_MPa"])
         carried = self.peak >= 0.5 * self.pushed > 0
-        return not (carried and row[self.key] > 2 * self.at and row["stress_MPa"] < 0.5 * self.peak)
+        return not (carried and row[self.key] > self.beyond * self.at and row["stress_MPa"] < 0.5 * self.peak)
 
 
 def beam_case(out: str, D: float, notch: float, seed: int, gf_cv: float = 1.0) -> str:

@@ -50,6 +50,7 @@ class Blind:
     x_label: str = ""
     x_scale: float = 1.0  # to the unit of x_label
     past_the_peak: bool = True  # stop each run past its peak (PastThePeak); else at the file's final strain
+    beyond: float = 2.0  # past the peak: at this multiple of the abscissa at the peak (PastThePeak)
     gravity: float = 0.0  # [m/s^2]: the specimen lies on its supports under its own weight
     from_elastic_zero: bool = False  # x from where the elastic line crosses zero load (elastic_zero)
     calibration: str = ""  # the entry whose material.json this one uses (the same concrete)
@@ -58,7 +59,8 @@ class Blind:
 SPECIMENS = {
     # Winkler, Hofstetter and Niederwieser (2001)
     "l_panel": Blind("examples/l_panel.toml", {"E": 25.85e9, "nu": 0.18, "f_t": 2.7e6, "G_F": 90.0},
-                     "mean_strain", "load-point displacement [mm]", 500.0),  # gauge 0.5 m, to mm
+                     "mean_strain", "load-point displacement [mm]", 500.0,  # gauge 0.5 m, to mm
+                     beyond=4.0),  # to 4 times its displacement at the peak (issue 41, item 6)
     # García-Álvarez, Gettu and Carol (2012)
     "eccentric_notch_beam": Blind("examples/eccentric_notch_beam.toml",
                                   {"E": 33.8e9, "nu": 0.2, "f_t": 3.5e6, "G_F": 125.0, "rho": 2346.0},
@@ -81,10 +83,10 @@ class Stopped(Named):
     def __init__(self, path: str, material: dict, seed: int, blind: Blind):
         test = SpecimenTest.from_file(path, overrides=dict(material, seed=seed, threads=1, gravity=blind.gravity))
         super().__init__(test, f"s{seed}", ["curve", "summary"] + (["figures"] if seed == 1 else []))
-        self.past_the_peak = blind.past_the_peak
+        self.past_the_peak, self.beyond = blind.past_the_peak, blind.beyond
 
     def run(self, observers=(), simulation=None, previous_rows=()):
-        stop = [PastThePeak(previous_rows)] if self.past_the_peak else []
+        stop = [PastThePeak(previous_rows, beyond=self.beyond)] if self.past_the_peak else []
         return self.test.run(list(observers) + stop, simulation, previous_rows)
 
 
