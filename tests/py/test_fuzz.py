@@ -137,9 +137,17 @@ EXTREMES = ["0", "-1", "1e-300", "1e300", "nan", "inf", "-inf", "999999999999999
 BASE = {"size": "0.04", "strain_rate": "0.5", "stop_at": "load_loss", "final_strain": "3e-4", "threads": "1"}
 
 
+# A cube of 1 or 2 m is a real specimen, not an extreme: its lattice (50^3 or 100^3 modules, up to 14
+# million bars) takes minutes to build and run on one thread, as it must; sizes beyond the memory estimate
+# (1e5) are refused. So the size's draws are its extremes alone.
+_REAL_SIZES = ("1", "2")
+
+
 def _value(rng, p) -> str:
     if p["choices"]:
         return rng.choice([*p["choices"], "bogus"])
+    if p["name"] == "size":
+        return rng.choice([v for v in EXTREMES if v not in _REAL_SIZES])
     d = p["default"]
     return rng.choice(EXTREMES + [repr(d), repr(d * 10), repr(d / 10)] if d else EXTREMES)
 

@@ -40,9 +40,10 @@ inline double periodsToEpsP(double strainRate, double epsP, double omega1) {
     return epsP * omega1 / (2 * 3.14159265358979323846 * strainRate);
 }
 
-// Its inverse, the setting rate_periods: the strain rate whose drive strains eps_p in N periods.
+// Its inverse, the setting rate_periods: the strain rate whose drive strains eps_p in N periods. The
+// relation N x strain_rate = eps_p omega_1 / (2 pi) is symmetric: the same expression with N for the rate.
 inline double rateForPeriods(double periods, double epsP, double omega1) {
-    return epsP * omega1 / (2 * 3.14159265358979323846 * periods);
+    return periodsToEpsP(periods, epsP, omega1);
 }
 
 // The drive's displacement in one step over eps_p x the gauge length.
