@@ -146,6 +146,7 @@ def largest_first(todo, args):
 
 
 _in_case = False  # a worker process's: whether it runs a case now
+_stopping = False  # a worker process's: whether a signal has stopped its case
 
 
 def _worker_signals() -> None:
@@ -156,16 +157,27 @@ def _worker_signals() -> None:
 
 
 def _worker_signal(signum, frame):
+    """Only the first signal stops the case. A stopping worker hears more:
+    the pool SIGTERMs every worker left once one has ended by os._exit
+    (CPython's terminate_broken), the study SIGTERMs its workers when it is
+    itself terminated, and a signal to the process group reaches them too. One
+    of them, raised in the clean-up of the first, lost the case's summary.json
+    (test_signals.py, 4 runs in 100). The stopping worker writes its files and
+    ends within a fraction of a second: it needs no second signal."""
+    global _stopping
     if not _in_case:
         os._exit(128 + signum)
+    if _stopping:
+        return
+    _stopping = True
     raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
 
 
 def _worker_case(test, case_dir) -> dict:
     """run_case in a worker; stopped by a signal, the worker ends (its case
     has written what it keeps) rather than take the next case."""
-    global _in_case
-    _in_case = True
+    global _in_case, _stopping
+    _in_case, _stopping = True, False  # each case hears its own first signal: no worker is left deaf to them
     try:
         return run_case(test, case_dir)
     except KeyboardInterrupt as e:
