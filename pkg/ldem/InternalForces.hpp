@@ -55,9 +55,13 @@ private:
 
 // The law, and the dashpots if there are (BarDashpot.hpp), for the n bars of a
 // row, each from its stretch(p) (a SeriesStretch or a BarStretch): the same
-// loop for both paths; m the row's bar layer.
+// loop for both paths; m the row's bar layer. The law and stretch(p) come by
+// value, and stretch(p) holds its family and pointers by value: the loop's
+// stores to g, kappa and the dashpots' force are doubles, which the compiler
+// must assume may alias doubles reached through a reference, so it re-read
+// them every iteration (as vector gathers and broadcasts).
 template <class Law, class StretchOf>
-void lawBars(const Law& rowLaw, const BarRow& row, int m, double EA, double EAend, double invL, StretchOf stretch,
+void lawBars(const Law rowLaw, const BarRow& row, int m, double EA, double EAend, double invL, StretchOf stretch,
              const DashpotPass& dash, double* gx, double* gy, double* gz) {
     const std::int64_t n = row.count;
     if (!dash.state) {
@@ -101,11 +105,11 @@ void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, const Bar
     }
     rowLaw.setPath(path);
     if (path == kSeriesPath)
-        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [&](std::int64_t p) {
+        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
             return seriesStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
         }, dash, gx, gy, gz);
     else
-        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [&](std::int64_t p) {
+        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
             return barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
         }, dash, gx, gy, gz);
 }
