@@ -12,9 +12,11 @@ the ratio B/A of each pair is printed with the medians.
 """
 import argparse
 import os
-import statistics
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from simulated_ms_cost import alternate  # noqa: E402  (the pairs and their medians)
 
 # The timed part, run in a fresh interpreter for each build (each has its own _core).
 TIMED = """
@@ -49,14 +51,7 @@ def main(argv=None):
     p.add_argument("--warm", type=int, default=20)
     p.add_argument("--pairs", type=int, default=3)
     a = p.parse_args(argv)
-    A, B, ratios = [], [], []
-    for k in range(a.pairs):
-        ca, cb = step_ms(a.a, a), step_ms(a.b, a)
-        A.append(ca), B.append(cb), ratios.append(cb / ca)
-        print(f"pair {k + 1}: A {ca:.3f} ms/step, B {cb:.3f} ms/step, B/A {cb / ca:.3f}", flush=True)
-    print(f"median: A {statistics.median(A):.3f} ms per step, B {statistics.median(B):.3f}, "
-          f"B/A {statistics.median(ratios):.3f} (pairs: {', '.join(f'{r:.3f}' for r in ratios)})")
-
+    alternate(a.pairs, lambda path: (step_ms(path, a), None), a.a, a.b, "ms/step")
 
 if __name__ == "__main__":
     main()

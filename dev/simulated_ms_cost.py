@@ -52,15 +52,20 @@ def main(argv=None):
                    help="the two final mean strains (default: 1e-4,2e-4, the peak and the cracks of a uniform cube)")
     p.add_argument("--pairs", type=int, default=3)
     a = p.parse_args(argv)
-    A, B, ratios = [], [], []
-    for k in range(a.pairs):
-        (ca, sa), (cb, sb) = per_ms(a.a, a), per_ms(a.b, a)
-        A.append(ca), B.append(cb), ratios.append(cb / ca)
-        print(f"pair {k + 1}: A {ca:.2f} s/ms ({sa:.0f} steps/ms), B {cb:.2f} s/ms ({sb:.0f} steps/ms), B/A {cb / ca:.3f}",
-              flush=True)
-    print(f"median: A {statistics.median(A):.2f} s per simulated ms, B {statistics.median(B):.2f}, "
-          f"B/A {statistics.median(ratios):.3f} (pairs: {', '.join(f'{r:.3f}' for r in ratios)})")
+    alternate(a.pairs, lambda path: per_ms(path, a), a.a, a.b, "s/ms")
 
+
+def alternate(pairs, measure, a, b, unit):
+    """Builds a and b in turn, pair by pair: measure(build) gives (cost, steps per unit or None);
+    prints each pair's costs and B/A, then the medians (dev/checkpoint_step_cost.py uses it too)."""
+    A, B, ratios = [], [], []
+    for k in range(pairs):
+        (ca, sa), (cb, sb) = measure(a), measure(b)
+        A.append(ca), B.append(cb), ratios.append(cb / ca)
+        rate = (lambda s: "" if s is None else f" ({s:.0f} steps/ms)")
+        print(f"pair {k + 1}: A {ca:.3f} {unit}{rate(sa)}, B {cb:.3f} {unit}{rate(sb)}, B/A {cb / ca:.3f}", flush=True)
+    print(f"median: A {statistics.median(A):.3f} {unit}, B {statistics.median(B):.3f}, "
+          f"B/A {statistics.median(ratios):.3f} (pairs: {', '.join(f'{r:.3f}' for r in ratios)})")
 
 if __name__ == "__main__":
     main()
