@@ -102,7 +102,14 @@
       "dynamics/CrackPace.hpp)")                                                                             \
     X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
       "tail_drive adaptive: the kinetic energy less the drive's quasi-static motion, over the external "     \
-      "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)")
+      "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)") \
+    X(double, crackSecant, "crack_secant", 0.0, "", Domain::closed(0, 1),                                    \
+      "tail_drive adaptive: the drive also slows to crack_pace near the peak, while the curve's secant "      \
+      "stress / strain is below crack_secant x its elastic value and the stress above crack_band x the "     \
+      "peak so far (0, the default: off; dynamics/CrackPace.hpp)")                                            \
+    X(double, crackBand, "crack_band", 0.5, "", Domain::open(0, 1),                                          \
+      "tail_drive adaptive: crack_secant's band: the stress, over the peak so far, below which the curve "    \
+      "is past its snap and the drive is no longer slowed for its secant")
 
 // Opening control (dynamics/ServoDrive.hpp).
 #define LDEM_SERVO_PARAMETERS(X)                                                                             \

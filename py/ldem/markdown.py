@@ -40,8 +40,11 @@ def tail_drive_words(p: dict) -> str:
     if p.get("tail_drive", "fixed") == "fixed":
         return ""
     pace = p.get("crack_pace", 1.0)  # runs before the pace was declared ran without it
+    secant = p.get("crack_secant", 0.0)
+    near = (f" or near the peak (secant below {secant:g} of the elastic, stress above {p['crack_band']:g} of the peak)"
+            if secant > 0 else "")
     before = (f"; before the load loss at {pace:g} of the rate while cracks run and K/W > {p['crack_kinetic']:g}"
-              if pace < 1 else "")
+              f"{near}" if pace < 1 else "")
     return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
             f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}"
             f"{before}; docs/cube.md)")

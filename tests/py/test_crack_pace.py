@@ -80,3 +80,31 @@ def test_the_pace_leaves_a_notched_beams_peak_alone(tmp_path_factory):
     paced = beam("--set", "tail_drive=adaptive", "--set", "crack_pace=0.0625")
     assert paced["steps"] != unpaced["steps"]  # the pace acted
     assert abs(paced["peak_stress_MPa"] / unpaced["peak_stress_MPa"] - 1) < 0.005
+
+
+
+def test_the_secant_slows_the_drive_from_the_bend_of_the_curve(tmp_path_factory):
+    """crack_secant: the pace also slows while the curve's secant is below that fraction of the elastic one and
+    the stress within the band. On the 0.08 m cube: at the rate's speed while the curve is straight, at
+    crack_pace of it at the peak (where K_own alone leaves it near full speed), and more steps to the load loss."""
+    import numpy as np
+    from conftest import run_cli
+
+    def curve(*more):
+        d = tmp_path_factory.mktemp("secant")
+        r = run_cli("cube", *ARGS, "--size", "0.08", "--crack-pace", "0.0625", *more, "--out", str(d))
+        assert r.returncode == 0, r.stderr
+        c = np.genfromtxt(d / "curve.csv", delimiter=",", names=True)
+        return c, json.loads((d / "summary.json").read_text())
+
+    def speed(c, row):  # mean strain per step over the record interval ending at row
+        return (c["mean_strain"][row] - c["mean_strain"][row - 1]) / (c["step"][row] - c["step"][row - 1])
+
+    (a, sa), (b, sb) = curve(), curve("--crack-secant", "0.9")
+    assert sb["load_loss"]["step"] > sa["load_loss"]["step"]
+    straight = np.searchsorted(a["mean_strain"], 0.25 * sa["strain_at_peak"])  # a quarter of the peak strain: straight
+    assert speed(b, straight) == pytest.approx(speed(a, straight), rel=1e-9)
+    peak_a, peak_b = np.argmax(a["stress_MPa"]), np.argmax(b["stress_MPa"])
+    assert speed(a, peak_a) > 0.5 * speed(a, straight)  # K_own alone: near full speed at the peak
+    assert speed(b, peak_b) < 0.1 * speed(a, straight)  # the secant: at crack_pace (0.0625)
+    assert sb["energy_balance_error"] < 2e-3

@@ -70,7 +70,7 @@ void AdaptiveTailDrive::record(const DriveRecord& r) {
     }
     if (tail_.active()) tail_.record(p.time, p.fracture, p.stress, r.summary.peakStress);
     else if (pace_.on()) pace_.record(p.kineticOwn, p.externalWork, p.fracture, r.summary.loadLoss.reached(),
-                                      r.summary.peakStress);
+                                      r.summary.peakStress, p.stress, p.meanStrain);
 }
 
 std::vector<double> AdaptiveTailDrive::state() const {
