@@ -80,7 +80,7 @@ TEST(CrackPace, TheClockIntegratesTheRampedPace) {
     CrackPace p(limits());
     const double dt = 1e-6, peak = 2e6;
     const int R = 40;
-    p.record(0.01, 1.0, 0.1, false, peak);  // brake: P from 1 to 0.8
+    p.record(0.01, 1.0, 0.1, false, peak, 0.0, 0.0);  // brake: P from 1 to 0.8
     for (int k = 0; k < R; ++k) p.advance(dt, k, R);
     EXPECT_NEAR(p.tau, dt * (R * 1.0 + (0.8 - 1.0) * (R + 1) / 2.0), 1e-18);
     EXPECT_NEAR(p.tau - p.tauBefore, dt * 0.8, 1e-20);  // the last step at P_1

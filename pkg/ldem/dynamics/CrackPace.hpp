@@ -80,8 +80,8 @@ public:
     // The pace at the end of the next record interval from P0, towards target.
     static double next(const Limits& l, double P0, double target, double peakStress);
     // At a record (state n): K_own, W, U_f, the load lost, the peak so far, the stress and mean strain.
-    void record(double kinetic, double work, double fracture, bool lost, double peakStress, double stress = 0,
-                double strain = 0);
+    void record(double kinetic, double work, double fracture, bool lost, double peakStress, double stress,
+                double strain);
     // tau(n+1) from tau(n), step k (0..R-1) of the interval.
     void advance(double dt, int k, int R) { tauBefore = tau, tau += dt * (P0_ + (P1_ - P0_) * (k + 1) / R); }
     double pace() const { return P1_; }  // the pace the current interval ends at
