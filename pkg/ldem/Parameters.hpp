@@ -166,6 +166,11 @@
       "stop_at load_loss: the run goes on at least to this multiple of the mean strain at the peak, so that " \
       "the softening branch and the crack are in the record")
 
+// The past-the-peak stop (dynamics/PastPeakStop.hpp).
+#define LDEM_PAST_PEAK_STOP_PARAMETERS(X)                                                                    \
+    X(double, peakStopStrainRatio, "peak_stop_strain_ratio", 10.0, "", Domain::atLeast(1),                   \
+      "stop_at past_peak: the run ends at this multiple of the mean strain at the peak, lost load or not")
+
 // The final-strain stop (dynamics/FinalStrainStop.hpp).
 #define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
     X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(),                                      \
@@ -187,10 +192,12 @@
       "start (9.81: a beam lying on its supports); its work counts as external work")                        \
     LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
     LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                           \
-    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged"}),\
-      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, or "    \
-      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load loss")\
+    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged", "past_peak"}),\
+      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, "       \
+      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load "  \
+      "loss, or past_peak: peak_stop_strain_ratio x the strain at the peak")                                 \
     LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                        \
+    LDEM_PAST_PEAK_STOP_PARAMETERS(X)                                                                        \
     LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                        \
     LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                     \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \

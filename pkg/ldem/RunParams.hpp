@@ -5,7 +5,7 @@
 
 namespace ldem {
 
-enum class StopAt { Separation, LoadLoss, Converged };
+enum class StopAt { Separation, LoadLoss, Converged, PastPeak };
 
 struct RunParams {
     LDEM_RUN_PARAMETERS(LDEM_DECLARE_MEMBER)

@@ -69,6 +69,8 @@ std::vector<StopRules> makeStops(const RunParams& run) {
         stops.emplace_back(LoadLossStop(LDEM_PART_PARAMS(LoadLossStop::Params, LDEM_LOAD_LOSS_STOP_PARAMETERS, run)));
     if (run.stopAt == StopAt::Converged)
         stops.emplace_back(ConvergedStop(LDEM_PART_PARAMS(ConvergedStop::Params, LDEM_CONVERGED_STOP_PARAMETERS, run)));
+    if (run.stopAt == StopAt::PastPeak)
+        stops.emplace_back(PastPeakStop(LDEM_PART_PARAMS(PastPeakStop::Params, LDEM_PAST_PEAK_STOP_PARAMETERS, run)));
     stops.emplace_back(FinalStrainStop(LDEM_PART_PARAMS(FinalStrainStop::Params, LDEM_FINAL_STRAIN_STOP_PARAMETERS, run)));
     return stops;
 }

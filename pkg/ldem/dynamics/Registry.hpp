@@ -26,13 +26,14 @@
 #include "ldem/dynamics/LoadLoss.hpp"
 #include "ldem/dynamics/LoadLossStop.hpp"
 #include "ldem/dynamics/MassDamping.hpp"
+#include "ldem/dynamics/PastPeakStop.hpp"
 #include "ldem/dynamics/SeparationStop.hpp"
 #include "ldem/dynamics/ServoDrive.hpp"
 
 namespace ldem {
 
 using Drives = std::variant<ConstantRateDrive, AdaptiveTailDrive, ServoDrive>;
-using StopRules = std::variant<SeparationStop, LoadLossStop, ConvergedStop, FinalStrainStop>;
+using StopRules = std::variant<SeparationStop, LoadLossStop, ConvergedStop, PastPeakStop, FinalStrainStop>;
 using Dampings = std::tuple<MassDamping, BarDashpots>;  // every one applied, in this order
 
 // What the parts are built from, beyond their parameters.
@@ -51,7 +52,7 @@ double dampingCoefficient(const Dampings& d);  // D_f of the mass-proportional d
 ConstantRateDrive fixedDrive(const LoadingParams& load, const DynamicsSetup& s);
 // servo under opening control, else tail_drive: adaptive (if damped: D_f > 0) or fixed. Checks their parameters.
 Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSetup& s, const Dampings& d);
-// separation, then stop_at's rule (load_loss, converged; none for separation), then the final strain.
+// separation, then stop_at's rule (load_loss, converged, past_peak; none for separation), then the final strain.
 std::vector<StopRules> makeStops(const RunParams& run);
 
 // The node update with every damping's terms, from the undamped one.
