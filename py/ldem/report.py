@@ -266,19 +266,21 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
            "load was lost, and the cheapest cut (the least energy of any set of bars whose rupture separates the "
            "faces: a lower bound of U_num). U_min = E[G_f] x face area; corrected c_a = 0.1385 x E[U_num/U_min] "
            "(the study's proposal for coarser meshes). A specimen that hinges (triangular) does not separate: "
-           "its run stops at the load loss (stop_at load_loss, never before loss_stop_strain_ratio x its strain at "
-           "the peak), or, with --triangular-stop converged, once U has converged (it grew by less than "
-           "converged_growth over the last doubling of the strain past the load loss), and U there is U_final, "
-           "never U_num (mean over the converged specimens, counted in 'converged').", ""]
+           "its run stops at peak_stop_strain_ratio x its strain at the peak (stop_at past_peak; 'at the end' is "
+           "U there), or, with --triangular-stop load_loss, at the load loss (never before loss_stop_strain_ratio "
+           "x its strain at the peak), or, with --triangular-stop converged, once U has converged (it grew by "
+           "less than converged_growth over the last doubling of the strain past the load loss), and U there is "
+           "U_final, never U_num (mean over the converged specimens, counted in 'converged'). 'at load loss' is "
+           "the mean over the specimens whose load was lost before they stopped.", ""]
     rows = [[r["load"], f"{r['size_m']:g}", f"{r['separated']}/{r['seeds']}",
              num_cell(r["separation_strain_mean"], ".3g"), num_cell(r["U_num_J_mean"], ".4g"),
              f"{r['U_min_J']:.4g}", num_cell(r["U_ratio_mean"], ".3f"), num_cell(r["U_ratio_cv"], ".3f"),
-             num_cell(r["U_loss_ratio_mean"], ".3f"), f"{r.get('converged', 0)}/{r['seeds']}",
-             num_cell(r.get("U_final_ratio_mean", ""), ".3f"), f"{r['U_mincut_ratio_mean']:.3f}",
-             num_cell(r["ca_corrected"], ".4f"),
-             str(r["energy_errors"])] for r in table]
+             num_cell(r["U_loss_ratio_mean"], ".3f"), num_cell(r.get("U_end_ratio_mean", ""), ".3f"),
+             f"{r.get('converged', 0)}/{r['seeds']}", num_cell(r.get("U_final_ratio_mean", ""), ".3f"),
+             f"{r['U_mincut_ratio_mean']:.3f}", num_cell(r["ca_corrected"], ".4f"), str(r["energy_errors"])]
+            for r in table]
     md += [md_table(["load", "size [m]", "separated", "strain at separation", "U_num [J]", "U_min [J]", "U_num/U_min",
-                     "CV", "at load loss", "converged", "U_final/U_min", "cheapest cut", "corrected c_a",
+                     "CV", "at load loss", "at the end", "converged", "U_final/U_min", "cheapest cut", "corrected c_a",
                      "energy errors"], rows), ""]
     if fits:
         md += ["Fractal law U(b) = U(b0) (b/b0)^d, b0 = 0.12 m (least squares in log-log axes through U(b0)):", ""]

@@ -203,10 +203,37 @@ TEST(DynamicParts, TheLoadLossStopNeverEndsARunBeforeItsMultipleOfThePeakStrain)
     EXPECT_STREQ(stop.reason(at, s), "load_lost");
 }
 
+// The past-the-peak stop ends the run at peak_stop_strain_ratio x the strain at
+// the peak, lost load or not; never before the peak (no strain at the peak yet),
+// and never on the rising branch, where the peak so far is the latest record.
+TEST(DynamicParts, ThePastPeakStopEndsARunAtItsMultipleOfThePeakStrain) {
+    PastPeakStop::Params p;
+    p.peakStopStrainRatio = 10;
+    const PastPeakStop stop(p);
+    RunSummary s;
+    CurvePoint at;
+    at.meanStrain = 1e-9;
+    EXPECT_EQ(stop.reason(at, s), nullptr);  // no peak yet: strainAtPeak 0
+    s.strainAtPeak = at.meanStrain = 1e-4;
+    EXPECT_EQ(stop.reason(at, s), nullptr);  // at the peak
+    at.meanStrain = 0.99e-3;
+    EXPECT_EQ(stop.reason(at, s), nullptr);
+    at.meanStrain = 1e-3;
+    EXPECT_STREQ(stop.reason(at, s), "past_peak");  // the load is not lost: it stops all the same
+    s.loadLoss.step = 100;
+    EXPECT_STREQ(stop.reason(at, s), "past_peak");
+    RunParams run;
+    run.stopAt = StopAt::PastPeak;
+    const auto stops = makeStops(run);  // separation, this rule, the final strain
+    ASSERT_EQ(stops.size(), 3u);
+    EXPECT_TRUE(std::holds_alternative<PastPeakStop>(stops[1]));
+}
+
 TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
     FinalStrainStop::Params f;
     EXPECT_TRUE(FinalStrainStop(f).state().empty());
     EXPECT_TRUE(LoadLossStop(LoadLossStop::Params{}).state().empty());
+    EXPECT_TRUE(PastPeakStop(PastPeakStop::Params{}).state().empty());
     MassDamping::Params m;
     m.zeta = 0.02;
     Dampings d{MassDamping(m, 800.0), BarDashpots()};

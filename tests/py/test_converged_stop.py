@@ -46,10 +46,26 @@ def test_a_triangular_cube_stops_once_its_energy_has_converged(run):
     assert len(growth) == 2 or growth[-3] >= GROWTH  # and not earlier: the rung before them was loud
 
 
-def test_the_size_effect_study_stops_triangular_cubes_at_load_loss_or_when_converged():
+def test_the_size_effect_study_stops_triangular_cubes_past_their_peak_at_load_loss_or_when_converged():
     tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"])
-    assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "load_loss")]
-    tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"], triangular_stop="converged")
-    assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "converged")]
+    assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", "past_peak")]
+    for stop in ("load_loss", "converged"):
+        tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"], triangular_stop=stop)
+        assert [(t.load, t.stop_at) for t in tests] == [("uniform", "separation"), ("triangular", stop)]
     with pytest.raises(ValueError, match="triangular_stop"):
         study.size_effect_tests([0.12], 1, ["triangular"], triangular_stop="separation")
+
+
+def test_past_peak_stops_at_the_first_record_past_ten_times_the_strain_at_the_peak(run):
+    """The same cube as the converged run, stopped past its peak: the same records
+    up to there (the stop changes nothing else)."""
+    r = ldem.CubeTest(size=0.08, load="triangular", stop_at="past_peak", threads=1).run()
+    s, c = r.summary, r.curve
+    assert s["stop_reason"] == "past_peak" and not s["separated"] and s["U_num_J"] is None
+    ten = 10 * s["strain_at_peak"]
+    assert c["mean_strain"][-1] >= ten > c["mean_strain"][-2]
+    assert s["fracture_energy_J"] == c["fracture_J"][-1]
+    n = len(c["step"])
+    assert len(run.curve["step"]) > n
+    for key in ("step", "mean_strain", "stress_MPa", "fracture_J"):
+        assert np.array_equal(c[key], run.curve[key][:n]), key

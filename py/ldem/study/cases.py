@@ -209,8 +209,8 @@ def run_case(test, case_dir: str) -> dict:
 # table of peaks and strains at the peak, its curves and crack pictures) is in
 # the record by 10 x its strain at the peak, where its stress is down to a few
 # per cent of the peak, so by default it stops there (stop_at past_peak:
-# dynamics/PastPeakStop.hpp). Its load loss (1 %) comes at 15-40 x, two thirds of
-# the triangular steps later on the 0.96 m cube: an option. Its U_final, once U
+# dynamics/PastPeakStop.hpp). Its load loss (1 %) comes at 15-44 x (0.48-0.96
+# m), 2.6 times the steps on the 0.96 m cubes: an option. Its U_final, once U
 # has converged (dynamics/ConvergedStop.hpp), is another: the energy grows to
 # mean strains of 0.1-0.2 as the columns beside the hinge break, which costs
 # TRIANGULAR_CONVERGED_COST.

@@ -56,7 +56,7 @@ def add_arguments(s) -> None:
     s.add_argument("--triangular-stop", choices=TRIANGULAR_STOPS, default="past_peak",
                    help="what ends a triangular case: past_peak (default: 10 x its strain at the peak, where its "
                         "peak, curve and crack are all there), load_loss (the stress below 1 %% of the peak, "
-                        "never before 10 x its strain at the peak: about 3 times the steps at 0.96 m) or converged "
+                        "never before 10 x its strain at the peak: 2.6 times the steps at 0.96 m) or converged "
                         f"(U_final, once the fracture energy stops growing: {TRIANGULAR_CONVERGED_COST})")
 
 
@@ -80,7 +80,7 @@ def cmd_size_effect(args) -> int:
               + (f"U_num/U_min {r['U_ratio_mean']:.3f}" if r["separated"] else "U_num -")
               + f" ({r['separated']} of {r['seeds']} separated), at load loss "
               + (f"{r['U_loss_ratio_mean']:.3f}" if r["U_loss_ratio_mean"] != "" else "-")
-              + f", cheapest cut {r['U_mincut_ratio_mean']:.3f}"
+              + f", at the end {r['U_end_ratio_mean']:.3f}, cheapest cut {r['U_mincut_ratio_mean']:.3f}"
               + (f", {r['energy_errors']} ENERGY ERRORS" if r["energy_errors"] else ""))
     for load, fit in fits.items():
         print(f"  fractal fit ({load}): d = {fit['d']:.3f} (energy per unit area: b^{fit['d_specific']:.3f})")

@@ -19,14 +19,15 @@ B0 = 0.12  # reference size of the fractal law [m]
 CASE_COLUMNS = ("load", "size_m", "seed", "zeta", "strain_rate", "peak_stress_MPa", "strain_at_peak",
                 "edge_strain_at_peak", "separated", "separation_strain", "U_num_J", "U_min_J", "U_ratio",
                 "load_loss_strain", "U_loss_J", "U_loss_ratio", "U_mincut_J", "U_mincut_ratio",
-                "converged_strain", "U_final_J", "U_final_ratio", "energy_balance_error", "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
+                "converged_strain", "U_final_J", "U_final_ratio", "U_end_J", "U_end_ratio", "energy_balance_error", "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
                 "wall_s", "stop_reason", "ldem_version", "git_commit", "date", "host")
 
 
 def case_row(s: dict) -> dict:
     """One case's row: U_num is the energy at separation, empty if the run ended
     without separating (its energy at the end is never presented as U_num;
-    U_final is that of a run that stopped because U had converged);
+    U_final is that of a run that stopped because U had converged, U_end the
+    energy where the run stopped, whatever stopped it);
     then which ldem ran it, where and when (empty for a case from before
     summaries carried their provenance)."""
     p = s["parameters"]
@@ -43,6 +44,7 @@ def case_row(s: dict) -> dict:
             "U_mincut_J": s["U_mincut_J"], "U_mincut_ratio": s["U_mincut_J"] / u_min,
             "converged_strain": conv.get("mean_strain", ""), "U_final_J": conv.get("fracture_energy_J", ""),
             "U_final_ratio": conv["fracture_energy_J"] / u_min if conv else "",
+            "U_end_J": s["fracture_energy_J"], "U_end_ratio": s["fracture_energy_J"] / u_min,
             "energy_balance_error": s["energy_balance_error"], "energy_error": bool(s["energy_error"]),
             "clamped_bars": s["clamped_bars"], "n_bars": s["n_bars"], "steps": s["steps"], "dt_s": s["dt_s"],
             "threads": s["threads"], "wall_s": s["wall_s"], "stop_reason": s["stop_reason"],
@@ -62,7 +64,7 @@ def mean_cv(values) -> tuple:
 SUMMARY_COLUMNS = ("load", "size_m", "seeds", "separated", "energy_errors", "peak_stress_MPa_mean",
                    "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv", "edge_strain_at_peak_mean",
                    "separation_strain_mean", "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv",
-                   "U_loss_ratio_mean", "U_loss_ratio_cv", "converged", "U_final_ratio_mean", "U_final_ratio_cv",
+                   "U_loss_ratio_mean", "U_loss_ratio_cv", "U_end_ratio_mean", "converged", "U_final_ratio_mean", "U_final_ratio_cv",
                    "U_mincut_ratio_mean", "U_mincut_ratio_cv", "ca_corrected", "ref_peak_stress_MPa",
                    "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak", "wall_s_mean")
 
@@ -89,6 +91,7 @@ def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, Lis
             ratio, ratio_cv = _mean_cv_or_empty([r["U_ratio"] for r in g])
             loss, loss_cv = _mean_cv_or_empty([r["U_loss_ratio"] for r in g])
             final, final_cv = _mean_cv_or_empty([r.get("U_final_ratio", "") for r in g])
+            end, _ = _mean_cv_or_empty([r.get("U_end_ratio", "") for r in g])  # "" in rows from before U_end
             cut, cut_cv = mean_cv([r["U_mincut_ratio"] for r in g])
             u_num = [r["U_num_J"] for r in g if r["U_num_J"] != ""]
             sep_strain = [r["separation_strain"] for r in g if r["separation_strain"] != ""]
@@ -102,6 +105,7 @@ def aggregate(rows: Sequence[dict], c_a: float, curves: Optional[Dict[tuple, Lis
                         "separation_strain_mean": float(np.mean(sep_strain)) if sep_strain else "",
                         "U_num_J_mean": float(np.mean(u_num)) if u_num else "", "U_min_J": g[0]["U_min_J"],
                         "U_ratio_mean": ratio, "U_ratio_cv": ratio_cv, "U_loss_ratio_mean": loss,
+                        "U_end_ratio_mean": end,
                         "converged": sum(1 for r in g if r.get("U_final_J", "") != ""),
                         "U_final_ratio_mean": final, "U_final_ratio_cv": final_cv,
                         "U_loss_ratio_cv": loss_cv, "U_mincut_ratio_mean": cut, "U_mincut_ratio_cv": cut_cv,
