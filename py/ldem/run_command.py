@@ -155,7 +155,7 @@ def report_run(result, args, edge: bool = False) -> int:
               f"{test.converged_growth:.0%} over the last doubling of the strain): U_final "
               f"{s['U_final_J']:.4g} J{of_min(s['U_final_J'])} (not U_num: it did not separate)")
     elif s["stop_reason"] in ("final_strain", "past_peak", "stopped"):
-        stop = {"final_strain": "the final strain", "past_peak": f"{test.peak_stop_strain_ratio:g} x the strain at the peak",
+        stop = {"final_strain": "the final strain", "past_peak": "peak_stop_strain_ratio x the strain at the peak",
                 "stopped": "an observer's request"}[s["stop_reason"]]
         aim = test.stop_at in ("separation", "converged")  # a run meant to separate: its energy is not U_num
         print(f"stopped at {stop} ({strain} {result.curve['mean_strain'][-1]:.4e})" + " before separation" * aim

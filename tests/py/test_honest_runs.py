@@ -158,6 +158,10 @@ def test_ldem_run_takes_threads_and_says_which_stop_it_reached(cli, tmp_path):
     assert json.loads((out / "summary.json").read_text())["threads"] == 1
     assert "stopped at the final strain (mean strain 1.00" in r.stdout and "before separation" in r.stdout
     assert "NOT" not in r.stdout
+    r = cli("run", _small_cube_file(tmp_path), "--threads", "1", "--set", "stop_at=past_peak", "--no-progress",
+            "--no-plots", "--out", str(tmp_path / "p"))  # a file's specimen past its peak says which stop it was
+    assert r.returncode == 0, r.stderr
+    assert "stopped at peak_stop_strain_ratio x the strain at the peak (mean strain" in r.stdout
 
 
 def test_an_unknown_key_is_named_before_a_missing_one(cli, tmp_path):
