@@ -192,7 +192,8 @@
       "start (9.81: a beam lying on its supports); its work counts as external work")                        \
     LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
     LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                           \
-    X(StopAt, stopAt, "stop_at", StopAt::Separation, "", Domain::choices({"separation", "load_loss", "converged", "past_peak"}),\
+    X(StopAt, stopAt, "stop_at", StopAt::Separation, "",                                                     \
+      Domain::choices({"separation", "load_loss", "converged", "past_peak"}),                                \
       "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, "       \
       "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load "  \
       "loss, or past_peak: peak_stop_strain_ratio x the strain at the peak")                                 \

@@ -6,11 +6,14 @@ from typing import Sequence
 
 
 def stop_rule(p: dict) -> str:
-    """What ends a run of parameters p, in words."""
-    rule = {"separation": "separation (no chain of intact bars joins the faces)", "load_loss": "load loss",
-            "converged": f"separation, or U converged (growth below {p.get('converged_growth', 0.01):g} over the "
-                         f"last doubling of the strain past load loss)",
-            "past_peak": f"{p.get('peak_stop_strain_ratio', 10):g} x the mean strain at the peak"}[p.get("stop_at", "separation")]
+    """What ends a run of parameters p, in words (an older run's parameters may lack a newer stop's)."""
+    stop = p.get("stop_at", "separation")
+    if stop == "past_peak":
+        rule = f"{p['peak_stop_strain_ratio']:g} x the mean strain at the peak"
+    else:
+        rule = {"separation": "separation (no chain of intact bars joins the faces)", "load_loss": "load loss",
+                "converged": f"separation, or U converged (growth below {p.get('converged_growth', 0.01):g} over "
+                             f"the last doubling of the strain past load loss)"}[stop]
     return f"{p['load']}: {rule}, or mean strain {p['final_strain']:g}"
 
 

@@ -69,3 +69,11 @@ def test_past_peak_stops_at_the_first_record_past_ten_times_the_strain_at_the_pe
     assert len(run.curve["step"]) > n
     for key in ("step", "mean_strain", "stress_MPa", "fracture_J"):
         assert np.array_equal(c[key], run.curve[key][:n]), key
+
+
+def test_the_report_names_each_stop_with_its_number_and_reads_older_runs():
+    from ldem.markdown import stop_rule
+    p = {"load": "triangular", "final_strain": 0.5, "stop_at": "past_peak", "peak_stop_strain_ratio": 12.0}
+    assert stop_rule(p) == "triangular: 12 x the mean strain at the peak, or mean strain 0.5"
+    old = {"load": "uniform", "final_strain": 0.5, "stop_at": "separation"}  # a run from before past_peak
+    assert stop_rule(old).startswith("uniform: separation (no chain")

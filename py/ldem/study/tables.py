@@ -19,7 +19,8 @@ B0 = 0.12  # reference size of the fractal law [m]
 CASE_COLUMNS = ("load", "size_m", "seed", "zeta", "strain_rate", "peak_stress_MPa", "strain_at_peak",
                 "edge_strain_at_peak", "separated", "separation_strain", "U_num_J", "U_min_J", "U_ratio",
                 "load_loss_strain", "U_loss_J", "U_loss_ratio", "U_mincut_J", "U_mincut_ratio",
-                "converged_strain", "U_final_J", "U_final_ratio", "U_end_J", "U_end_ratio", "energy_balance_error", "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
+                "converged_strain", "U_final_J", "U_final_ratio", "U_end_J", "U_end_ratio", "energy_balance_error",
+                "energy_error", "clamped_bars", "n_bars", "steps", "dt_s", "threads",
                 "wall_s", "stop_reason", "ldem_version", "git_commit", "date", "host")
 
 
@@ -64,7 +65,8 @@ def mean_cv(values) -> tuple:
 SUMMARY_COLUMNS = ("load", "size_m", "seeds", "separated", "energy_errors", "peak_stress_MPa_mean",
                    "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv", "edge_strain_at_peak_mean",
                    "separation_strain_mean", "U_num_J_mean", "U_min_J", "U_ratio_mean", "U_ratio_cv",
-                   "U_loss_ratio_mean", "U_loss_ratio_cv", "U_end_ratio_mean", "converged", "U_final_ratio_mean", "U_final_ratio_cv",
+                   "U_loss_ratio_mean", "U_loss_ratio_cv", "U_end_ratio_mean", "converged", "U_final_ratio_mean",
+                   "U_final_ratio_cv",
                    "U_mincut_ratio_mean", "U_mincut_ratio_cv", "ca_corrected", "ref_peak_stress_MPa",
                    "ref_strain_at_peak", "mean_curve_peak_MPa", "mean_curve_strain_at_peak", "wall_s_mean")
 
