@@ -77,3 +77,11 @@ def test_the_report_names_each_stop_with_its_number_and_reads_older_runs():
     assert stop_rule(p) == "triangular: 12 x the mean strain at the peak, or mean strain 0.5"
     old = {"load": "uniform", "final_strain": 0.5, "stop_at": "separation"}  # a run from before past_peak
     assert stop_rule(old).startswith("uniform: separation (no chain")
+
+
+def test_the_size_effect_study_damps_the_tail_relative_to_its_mean_unless_told_otherwise():
+    tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"])
+    assert [t.tail_damping for t in tests] == ["relative", "relative"]
+    assert study.case_name(tests[0]) == "uniform_0.12m_s1_tail_dampingrelative"
+    tests = study.size_effect_tests([0.12], 1, ["uniform"], tail_damping="absolute")  # --set tail_damping=absolute
+    assert tests[0].tail_damping == "absolute" and study.case_name(tests[0]) == "uniform_0.12m_s1"
