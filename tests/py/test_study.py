@@ -89,6 +89,9 @@ def test_peak_of_the_mean_curve():
     peak, strain = study.mean_curve_peak([a, b])
     assert peak == pytest.approx(1.5, rel=1e-3)
     assert strain == pytest.approx(3e-4, rel=1e-3)
+    # Where a specimen separated, far past the peaks, does not move the peak of the mean.
+    c = {"mean_strain": np.array([0.0, 1.02e-4, 1.1e-4, 0.1]), "stress_MPa": np.array([0.0, 1.0, 0.2, 0.0])}
+    assert study.mean_curve_peak([a, c]) == study.mean_curve_peak([a, {k: v[:3] for k, v in c.items()}])
     rows = [{"load": "uniform", "size_m": 0.12, "peak_stress_MPa": p, "strain_at_peak": e, "edge_strain_at_peak": e,
              "separated": True, "U_num_J": 1.0, "U_min_J": 1.44, "U_ratio": 1 / 1.44, "U_loss_ratio": 0.5,
              "U_mincut_ratio": 0.6, "energy_error": False, "wall_s": 1.0, "separation_strain": 1e-2}
