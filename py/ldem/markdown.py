@@ -54,6 +54,14 @@ def tail_drive_words(p: dict) -> str:
             f"{before}; docs/cube.md)")
 
 
+def damping_words(p: dict) -> str:
+    """The damping, for the report's table (runs before tail_damping was
+    declared damped the absolute velocity to the end)."""
+    tail = (f"; from the load loss on, of each node's velocity less its mean over {p['damping_filter_periods']:g} "
+            "fundamental periods (tail_damping relative)" if p.get("tail_damping") == "relative" else "")
+    return f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional){tail}"
+
+
 def cost_section(case_rows) -> list:
     """The Cost section: per load, the cases' wall times added up (what the
     study costs one case at a time), the longest, and the commits they ran on."""

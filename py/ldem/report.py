@@ -14,7 +14,7 @@ import numpy as np  # noqa: E402
 
 from . import io, plots  # noqa: E402
 from .curves import mean_curve  # noqa: E402
-from .markdown import cost_section, md_table, num_cell, pct, stop_rule, tail_drive_words  # noqa: E402
+from .markdown import cost_section, damping_words, md_table, num_cell, pct, stop_rule, tail_drive_words  # noqa: E402
 
 
 class Case(NamedTuple):
@@ -222,7 +222,7 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
                               "two fundamental periods"],
               ["boundaries", f"lower face: lateral {p['bottom_lateral']}, vertical fixed; upper face: lateral "
                              f"{p['top_lateral']}"],
-              ["damping", f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"],
+              ["damping", damping_words(p)],
               ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
                             "same L0)"],
               ["load loss", "bars broke and the stress averaged over "

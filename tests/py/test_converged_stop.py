@@ -85,3 +85,12 @@ def test_the_size_effect_study_damps_the_tail_relative_to_its_mean_unless_told_o
     assert study.case_name(tests[0]) == "uniform_0.12m_s1_tail_dampingrelative"
     tests = study.size_effect_tests([0.12], 1, ["uniform"], tail_damping="absolute")  # --set tail_damping=absolute
     assert tests[0].tail_damping == "absolute" and study.case_name(tests[0]) == "uniform_0.12m_s1"
+
+
+def test_the_report_names_the_tail_damping_and_reads_older_runs():
+    from ldem.markdown import damping_words
+
+    p = ldem.CubeTest(tail_damping="relative").parameters()
+    assert damping_words(p).endswith("less its mean over 2 fundamental periods (tail_damping relative)")
+    old = {k: v for k, v in ldem.CubeTest().parameters().items() if k not in ("tail_damping", "damping_filter_periods")}
+    assert damping_words(old) == "zeta = 0.02 on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"
