@@ -79,12 +79,14 @@ def test_the_report_names_each_stop_with_its_number_and_reads_older_runs():
     assert stop_rule(old).startswith("uniform: separation (no chain")
 
 
-def test_the_size_effect_study_damps_the_tail_relative_to_its_mean_unless_told_otherwise():
-    tests = study.size_effect_tests([0.12], 1, ["uniform", "triangular"])
-    assert [t.tail_damping for t in tests] == ["relative", "relative"]
-    assert study.case_name(tests[0]) == "uniform_0.12m_s1_tail_dampingrelative"
-    tests = study.size_effect_tests([0.12], 1, ["uniform"], tail_damping="absolute")  # --set tail_damping=absolute
-    assert tests[0].tail_damping == "absolute" and study.case_name(tests[0]) == "uniform_0.12m_s1"
+def test_the_size_effect_study_damps_the_tails_of_its_larger_cubes_relative_to_their_mean():
+    tests = study.size_effect_tests([0.48, 0.72, 0.96], 1, ["uniform", "triangular"])
+    assert [t.tail_damping for t in tests] == ["absolute", "relative", "relative"] * 2
+    assert [study.case_name(t) for t in tests[:2]] == ["uniform_0.48m_s1", "uniform_0.72m_s1_tail_dampingrelative"]
+    tests = study.size_effect_tests([0.48, 0.96], 1, ["uniform"], tail_damping="absolute")  # --set
+    assert [t.tail_damping for t in tests] == ["absolute", "absolute"]
+    tests = study.size_effect_tests([0.48], 1, ["uniform"], tail_damping="relative")
+    assert tests[0].tail_damping == "relative"
 
 
 def test_the_report_names_the_tail_damping_and_reads_older_runs():
