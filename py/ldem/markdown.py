@@ -54,12 +54,15 @@ def tail_drive_words(p: dict) -> str:
             f"{before}; docs/cube.md)")
 
 
-def damping_words(p: dict) -> str:
-    """The damping, for the report's table (runs before tail_damping was
+def damping_words(ps) -> str:
+    """The damping of the cases (their parameters ps), for the report's table:
+    the relative tail and the sizes that had it (runs before tail_damping was
     declared damped the absolute velocity to the end)."""
-    tail = (f"; from the load loss on, of each node's velocity less its mean over {p['damping_filter_periods']:g} "
-            "fundamental periods (tail_damping relative)" if p.get("tail_damping") == "relative" else "")
-    return f"zeta = {p['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional){tail}"
+    rel = [q for q in ps if q.get("tail_damping") == "relative"]
+    where = "" if len(rel) == len(ps) else " at " + ", ".join(f"{s:g}" for s in sorted({q["size"] for q in rel})) + " m"
+    tail = (f"; from the load loss on{where}, of each node's velocity less its mean over "
+            f"{rel[0]['damping_filter_periods']:g} fundamental periods (tail_damping relative)" if rel else "")
+    return f"zeta = {ps[0]['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional){tail}"
 
 
 def cost_section(case_rows) -> list:

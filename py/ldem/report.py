@@ -222,7 +222,7 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
                               "two fundamental periods"],
               ["boundaries", f"lower face: lateral {p['bottom_lateral']}, vertical fixed; upper face: lateral "
                              f"{p['top_lateral']}"],
-              ["damping", damping_words(p)],
+              ["damping", damping_words([c.summary["parameters"] for c in cases])],
               ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
                             "same L0)"],
               ["load loss", "bars broke and the stress averaged over "

@@ -89,10 +89,13 @@ def test_the_size_effect_study_damps_the_tails_of_its_larger_cubes_relative_to_t
     assert tests[0].tail_damping == "relative"
 
 
-def test_the_report_names_the_tail_damping_and_reads_older_runs():
+def test_the_report_names_the_tail_damping_and_the_sizes_that_had_it_and_reads_older_runs():
     from ldem.markdown import damping_words
 
-    p = ldem.CubeTest(tail_damping="relative").parameters()
-    assert damping_words(p).endswith("less its mean over 2 fundamental periods (tail_damping relative)")
-    old = {k: v for k, v in ldem.CubeTest().parameters().items() if k not in ("tail_damping", "damping_filter_periods")}
-    assert damping_words(old) == "zeta = 0.02 on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"
+    small, large = (ldem.CubeTest(size=s, tail_damping=d).parameters()
+                    for s, d in ((0.48, "absolute"), (0.96, "relative")))
+    assert damping_words([large]).endswith("on, of each node's velocity less its mean over 2 fundamental periods "
+                                           "(tail_damping relative)")
+    assert "; from the load loss on at 0.96 m, of each node's" in damping_words([small, large, large])
+    old = {k: v for k, v in small.items() if k not in ("tail_damping", "damping_filter_periods")}
+    assert damping_words([old, old]) == "zeta = 0.02 on omega_1 (D_f = 2 zeta omega_1, mass-proportional)"
