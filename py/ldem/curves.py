@@ -22,11 +22,12 @@ def mean_curve(curves: Sequence[dict], column: str, scale=1.0, after_end=None, n
 
 def mean_curve_peak(curves: Sequence[dict]) -> tuple:
     """(peak stress [MPa], its mean strain) of the specimens' mean stress-strain
-    curve, on a grid finer than the records (about 1e-8 in strain): up to twice
-    the largest strain at a specimen's own peak. The mean curve cannot peak
-    beyond the last specimen's peak by more than that record, and a grid up to
-    the curves' ends (a separation strain, 1e2 to 1e3 times the peak's) is as
-    coarse as the records and moves with where the last specimen separated."""
+    curve, on a grid finer than the records (about 1e-8 in strain) up to twice
+    the largest strain at a specimen's own peak. Beyond it every specimen is
+    past its own peak, and a later maximum of the mean would need specimens to
+    harden again: the grid does not look for one. A grid up to the curves' ends
+    (a separation strain, 1e2 to 1e3 times the peak's) was as coarse as the
+    records and moved with where the last specimen separated."""
     top = 2 * max(c["mean_strain"][int(np.argmax(c["stress_MPa"]))] for c in curves)
     grid, stress = mean_curve(curves, "stress_MPa", after_end=0.0, n=20001, upto=top)
     i = int(np.argmax(stress))
