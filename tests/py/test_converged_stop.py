@@ -82,11 +82,24 @@ def test_the_report_names_each_stop_with_its_number_and_reads_older_runs():
 def test_the_size_effect_study_damps_the_tails_of_its_larger_cubes_relative_to_their_mean():
     tests = study.size_effect_tests([0.48, 0.72, 0.96], 1, ["uniform", "triangular"])
     assert [t.tail_damping for t in tests] == ["absolute", "relative", "relative"] * 2
-    assert [study.case_name(t) for t in tests[:2]] == ["uniform_0.48m_s1", "uniform_0.72m_s1_tail_dampingrelative"]
+    pace = "_crack_pace0.0625_crack_secant0.9"
+    assert [study.case_name(t) for t in tests[:2]] == [f"uniform_0.48m_s1{pace}",
+                                                       f"uniform_0.72m_s1{pace}_tail_dampingrelative"]
     tests = study.size_effect_tests([0.48, 0.96], 1, ["uniform"], tail_damping="absolute")  # --set
     assert [t.tail_damping for t in tests] == ["absolute", "absolute"]
     tests = study.size_effect_tests([0.48], 1, ["uniform"], tail_damping="relative")
     assert tests[0].tail_damping == "relative"
+
+
+def test_the_size_effect_study_paces_its_drive_near_the_peak_and_set_gives_the_constant_rate():
+    """Every case of the study slows its drive to a sixteenth near the peak and
+    while a crack runs (STUDY_PACE); --set crack_pace=1 is the constant rate,
+    and its case folder is the plain one."""
+    tests = study.size_effect_tests([0.12, 0.96], 1, ["uniform", "triangular"])
+    assert {(t.crack_pace, t.crack_secant) for t in tests} == {(0.0625, 0.9)}
+    assert ldem.CubeTest().crack_pace == 1.0  # ldem cube's default is still the constant rate
+    tests = study.size_effect_tests([0.12], 1, ["uniform"], crack_pace=1.0, crack_secant=0.0)  # --set
+    assert (tests[0].crack_pace, study.case_name(tests[0])) == (1.0, "uniform_0.12m_s1")
 
 
 def test_the_report_names_the_tail_damping_and_the_sizes_that_had_it_and_reads_older_runs():

@@ -23,6 +23,7 @@ is each registered one (command). Options of a parameter (--strain-rate,
 Modules, each importing only those listed before it:
   registry     the studies by name (Study, register)
   cases        case names and folders, what is finished, one case (any test object) run into its folder
+  settings     what the size-effect study sets beside the cubes' defaults (stops, tail, pace), its cases
   tables       one row per case, aggregation per (load, size), the fractal fit
   executors    running the unfinished cases: in turn, in processes, on dask
   options      what the studies' command lines share: common options, a parameter's option, the checks
@@ -45,8 +46,9 @@ Modules, each importing only those listed before it:
   command      the `ldem study` command line, from the registry
 """
 from ..io import read_table as read_csv, write_table as write_csv  # noqa: F401
-from .cases import (Named, case_dir, case_name, damping_tests, is_finished, load_case, load_curve,  # noqa: F401
-                    load_curves, load_summary, run_case, size_effect_tests)
+from .cases import (Named, case_dir, case_name, is_finished, load_case, load_curve,  # noqa: F401
+                    load_curves, load_summary, run_case)
+from .settings import damping_tests, size_effect_tests, study_settings  # noqa: F401
 from .executors import run_cases  # noqa: F401
 from .size_effect import STUDY_SIZES, run_size_effect  # noqa: F401
 from .damping import run_damping  # noqa: F401

@@ -22,7 +22,7 @@ import hashlib
 import json
 import os
 import shutil
-from typing import Dict, Iterable, List, Optional, Sequence
+from typing import Dict, List, Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
@@ -202,55 +202,6 @@ def run_case(test, case_dir: str) -> dict:
                       writers=case_writers(test) + ["checkpoint"], title=case_title(test))
     io.discard_checkpoint(case_dir)  # the case is done: the state is not needed
     return result.summary
-
-
-# What ends a case of the size-effect study. The uniform cube separates: U_num.
-# The triangular one hinges and never does. What the study reports of it (its
-# table of peaks and strains at the peak, its curves and crack pictures) is in
-# the record by 10 x its strain at the peak, where its stress is down to a few
-# per cent of the peak, so by default it stops there (stop_at past_peak:
-# dynamics/PastPeakStop.hpp). Its load loss (1 %) comes at 15-44 x (0.48-0.96
-# m), 2.6 times the steps on the 0.96 m cubes: an option. Its U_final, once U
-# has converged (dynamics/ConvergedStop.hpp), is another: the energy grows to
-# mean strains of 0.1-0.2 as the columns beside the hinge break, which costs
-# TRIANGULAR_CONVERGED_COST.
-STUDY_STOP = {"uniform": "separation", "triangular": "past_peak"}
-TRIANGULAR_STOPS = ("past_peak", "load_loss", "converged")
-TRIANGULAR_CONVERGED_COST = ("about 55 min a 0.96 m case on 2 cores, 5.5 h for its six seeds, measured with the "
-                             "fixed tail drive of 6863836 (results/separation/study_in_an_hour.md); today's drive "
-                             "bounds its drag and was not timed so far")
-
-
-# Past its load loss a cube's upper half hangs from the drive, which then runs
-# faster. From 0.72 m on the study damps each node's velocity less its own mean
-# there (tail_damping relative, dynamics/MassDamping.hpp): the speed-up drags
-# nothing, the uniform cubes take 0.39-0.42 of the steps, and U_num is within
-# 0.13 % of the absolute damping's on all twelve specimens. Below 0.72 m the
-# tail breaks much of U_num and the two differ: relative damping moved the
-# means by +1.7, +3.6 and -0.8 % at 0.12, 0.24 and 0.48 m, and on the two small
-# cubes also run with no speed-up it was the farther from them
-# (results/dynamics/relative_damping.md). So the absolute damping stays there
-# (its drive bounds its drag). --set tail_damping=... sets it for every size.
-RELATIVE_TAIL_FROM_M = 0.72
-
-
-def tail_settings(size: float) -> dict:
-    return {"tail_damping": "relative"} if size >= RELATIVE_TAIL_FROM_M else {}
-
-
-def size_effect_tests(sizes: Iterable[float], seeds: int, loads: Iterable[str], triangular_stop: str = "past_peak",
-                      **common) -> List[CubeTest]:
-    """The study's cases; triangular_stop: what ends a triangular case (TRIANGULAR_STOPS)."""
-    if triangular_stop not in TRIANGULAR_STOPS:
-        raise ValueError(f"triangular_stop must be one of {', '.join(TRIANGULAR_STOPS)}, not {triangular_stop!r}")
-    stop = {**STUDY_STOP, "triangular": triangular_stop}
-    return [CubeTest(size=s, load=ld, seed=k, **{"stop_at": stop[ld], **tail_settings(s), **common})
-            for ld in loads for s in sizes for k in range(1, seeds + 1)]
-
-
-def damping_tests(size: float, zetas: Iterable[float], loads: Iterable[str], seed: int = 1,
-                  **common) -> List[CubeTest]:
-    return [CubeTest(size=size, load=ld, seed=seed, zeta=z, **common) for ld in loads for z in zetas]
 
 
 def load_summary(case_dir: str) -> dict:

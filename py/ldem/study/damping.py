@@ -7,7 +7,8 @@ from typing import List, Optional, Sequence
 
 from .. import io
 from ..cube import CubeTest
-from .cases import damping_tests, load_case
+from .cases import load_case
+from .settings import damping_tests
 from .executors import run_cases
 from .options import (add_common, check_tests, common_settings, parse_floats, parse_loads,
                       parameter_option, values_option)

@@ -11,8 +11,8 @@ from typing import Optional, Sequence
 from .. import io
 from ..markdown import num_cell
 from ..cube import CubeTest
-from .cases import (TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, load_case, load_curves, read_discussion,
-                    size_effect_tests)
+from .cases import load_case, load_curves, read_discussion
+from .settings import TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, size_effect_tests
 from .executors import run_cases
 from .options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
                       parse_loads, seed_count, values_option)
