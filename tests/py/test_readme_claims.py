@@ -191,7 +191,8 @@ def test_study_resumes_after_kill_without_rerunning_finished_cases(tmp_path):
     parameters is never recomputed; an interrupted, failed or half-written one is
     recomputed from scratch.' The study is SIGKILLed while its second case runs."""
     out = str(tmp_path / "killed")
-    names = [study.case_name(ldem.CubeTest(size=b, strain_rate=0.1, stop_at="load_loss")) for b in (0.04, 0.08)]
+    names = [study.case_name(t) for t in study.size_effect_tests([0.04, 0.08], 1, ["uniform"], strain_rate=0.1,
+                                                                  stop_at="load_loss")]
     first, second = (os.path.join(out, "cases", n) for n in names)
     proc = start([PY, LDEM_SCRIPT, *STUDY, "--out", out])
     try:
