@@ -58,7 +58,9 @@ Drives makeDrive(const LoadingParams& load, const Material& m, const DynamicsSet
                                        mass.relative() ? column * (1 + Df * mass.filterTime()) : column,
                                        mass.relative() ? 0.0 : Df * T, T};
     // The pace's brake: a drop of the pace by dP in a record decelerates the column by dP v0 / T.
-    const CrackPace::Limits pace{p.crackPace,   p.crackKinetic, limits.column > 0 ? p.tailDrag / limits.column : 0.0,
+    // It acts before the load loss, where the damping is of the absolute velocity whatever
+    // tail_damping says: the plain column, never the relative damping's lag.
+    const CrackPace::Limits pace{p.crackPace,   p.crackKinetic, column > 0 ? p.tailDrag / column : 0.0,
                                  p.tailStep,    p.crackSecant,  p.crackBand};
     return AdaptiveTailDrive(fixed, limits, pace);
 }
