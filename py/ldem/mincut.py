@@ -5,15 +5,16 @@ disconnects every node of the upper face from every node of the lower face,
 of the sum of the bars' rupture energies. A specimen split into two pieces
 has broken such a set of bars, and each broken bar has dissipated its rupture
 energy, so the energy dissipated by the run can never be less than the
-cheapest cut: U_num >= U_mincut. It is computed as a max-flow/min-cut.
+cheapest cut: U_num >= U_mincut. It is computed as a max-flow/min-cut, in
+integers (pkg/ldem/MaxFlow.hpp).
 """
 import numpy as np
-from scipy.sparse import csr_matrix
-from scipy.sparse.csgraph import maximum_flow
 
-# scipy's max-flow works in int32 (it silently truncates int64 capacities), and
-# the residual of an undirected edge reaches up to twice its capacity: with
-# every capacity <= 2**28 + 1, residuals and the total flow fit in int32.
+from . import _core
+
+# Capacities in units of the upper face's cut / 2**28: exact integers for the
+# flow, and fine enough (3e-9 U_min a bar; an int64 flow would allow finer
+# units, these keep the committed studies' cuts to the bit).
 _UNITS = 2 ** 28
 
 
@@ -43,21 +44,6 @@ def cheapest_cut(sim):
     unit = upper / _UNITS  # exact: a power-of-two scaling
     # The face cut is _UNITS units at most, so an edge of more can never be in
     # a cheapest cut: capping there (in float: the int cast of a huge ratio
-    # would wrap) changes nothing and keeps within int32.
-    inf = _UNITS + 1
-    cap = np.minimum(np.floor(e / unit), inf).astype(np.int64)
-    return _max_flow(sim.lattice.n_nodes, n1, n2, cap, top, bottom, inf) * unit
-
-
-def _max_flow(n, n1, n2, cap, top, bottom, inf):
-    """Max flow from a super-source on `top` to a super-sink on `bottom`, in units."""
-    source, sink = n, n + 1
-    # Super-edges of capacity > the face cut: they are never in a cheapest cut.
-    rows = np.concatenate([n1, n2, np.full(top.size, source), bottom])
-    cols = np.concatenate([n2, n1, top, np.full(bottom.size, sink)])
-    data = np.concatenate([cap, cap, np.full(top.size + bottom.size, inf)])
-    keep = data > 0  # zero-capacity bars carry nothing: leave them out
-    graph = csr_matrix((data[keep], (rows[keep], cols[keep])), shape=(n + 2, n + 2))
-    # Parallel bars are summed by csr_matrix: cap again so the sum stays in int32.
-    graph.data = np.minimum(graph.data, inf).astype(np.int32)
-    return int(maximum_flow(graph, source, sink, method="dinic").flow_value)
+    # would wrap) changes nothing and keeps the sums small.
+    cap = np.minimum(np.floor(e / unit), _UNITS + 1).astype(np.int64)
+    return _core.max_flow(sim.lattice.n_nodes, n1, n2, cap, top, bottom) * unit

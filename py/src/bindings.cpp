@@ -12,6 +12,7 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
+#include "ldem/MaxFlow.hpp"
 #include "ldem/Modal.hpp"
 #include "ldem/ParameterTable.hpp"
 #include "ldem/Parallel.hpp"
@@ -37,6 +38,10 @@ template <class T>
 std::vector<T> fromNumpy(const py::handle& a) {
     return py::cast<std::vector<T>>(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a).attr("tolist")());
 }
+
+// An integer array from numpy, copied at once (not element by element, as a std::vector argument would be).
+using Int64s = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
+std::vector<std::int64_t> vectorOf(const Int64s& a) { return {a.data(), a.data() + a.size()}; }
 
 py::array_t<double> eventArray(const RunEvent& e) {
     return toNumpy(std::vector<double>{double(e.step), e.time, e.meanStrain, e.fracture});
@@ -281,6 +286,15 @@ PYBIND11_MODULE(_core, m) {
            const std::vector<std::int32_t>& b) { return nodesJoined(lat, intact, a, b); },
         py::arg("lattice"), py::arg("intact"), py::arg("a"), py::arg("b"),
         "True if a chain of intact bars (intact[bar] != 0) joins a node of a to a node of b: Simulation.run's separation test");
+    m.def(
+        "max_flow",
+        [](std::int64_t nodes, const Int64s& n1, const Int64s& n2, const Int64s& capacity, const Int64s& sources,
+           const Int64s& sinks) {
+            return maxFlow(nodes, vectorOf(n1), vectorOf(n2), vectorOf(capacity), vectorOf(sources), vectorOf(sinks));
+        },
+        py::arg("nodes"), py::arg("n1"), py::arg("n2"), py::arg("capacity"), py::arg("sources"), py::arg("sinks"),
+        "the maximum flow from sources to sinks over the undirected edges {n1, n2} of integer capacity "
+        "(pkg/ldem/MaxFlow.hpp): the cheapest cut's value (ldem.mincut)");
     // The bar laws' damage states (pkg/ldem/laws/BarLaw.hpp), for outputs and pictures.
     m.attr("UNDAMAGED") = int(DamageState::Undamaged);
     m.attr("DAMAGED") = int(DamageState::Damaged);

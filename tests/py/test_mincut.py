@@ -7,12 +7,7 @@ from scipy import sparse
 from scipy.optimize import linprog
 
 import ldem
-from conftest import load_file
-
-try:
-    from ldem.mincut import cheapest_cut
-except ImportError:  # not staged in build/python until the next build: the source
-    cheapest_cut = load_file("_mincut", "py", "ldem", "mincut.py").cheapest_cut
+from ldem.mincut import cheapest_cut
 
 # threads=1: building a Simulation with several threads on busy cores is slow
 # (seconds) for no gain on these tiny lattices.
