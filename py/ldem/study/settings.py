@@ -51,7 +51,7 @@ def tail_settings(size: float) -> dict:
 # of a numerical aid is the quarter rate: with this pace the 0.48 m cube passes
 # it in both loads (peak -0.12 %, energy +0.66 %), and the 0.96 m cube's energy
 # moves by +4.5 % at a mean strain of 5e-4 (+13.0 % without). It costs the study
-# 1.67 times its thread-seconds (results/separation/study_paced/). --set
+# 1.71 times its thread-seconds (results/separation/study_paced/). --set
 # crack_pace=1 runs the constant rate. The damping study (damping_tests) keeps
 # the constant rate.
 STUDY_PACE = {"crack_pace": 0.0625, "crack_secant": 0.9}
