@@ -3,7 +3,7 @@
 against `_core.max_flow` (pkg/ldem/MaxFlow.cpp), alternately on the same graph
 of one cube, with the ratio pair by pair (docs/performance.md).
 
-    dev/bench_mincut.py --size 0.96 --pairs 3
+    dev/mincut_cost.py --size 0.96 --pairs 3
 """
 import argparse
 import statistics
