@@ -36,12 +36,11 @@ std::int64_t maxFlow(std::int64_t nodes, const std::vector<std::int64_t>& n1, co
                      const std::vector<std::int64_t>& sinks) {
     if (n1.size() != n2.size() || n1.size() != capacity.size())
         throw std::invalid_argument("maxFlow: n1, n2 and capacity differ in length");
-    std::vector<char> side(nodes, 0);  // 1 source, 2 sink
-    for (std::int64_t s : sources) checkNode(s, nodes), side[s] = 1;
+    std::vector<bool> isSource(nodes, false);
+    for (std::int64_t s : sources) checkNode(s, nodes), isSource[s] = true;
     for (std::int64_t s : sinks) {
         checkNode(s, nodes);
-        if (side[s] == 1) throw std::invalid_argument("maxFlow: node " + std::to_string(s) + " is a source and a sink");
-        side[s] = 2;
+        if (isSource[s]) throw std::invalid_argument("maxFlow: node " + std::to_string(s) + " is a source and a sink");
     }
     // Each node's capacity: the sum over its edges, all a flow can pass through it.
     std::vector<std::int64_t> through(nodes, 0);
