@@ -34,14 +34,14 @@ py::array_t<T> toNumpy(const std::vector<T>& v) {
     return py::array_t<T>(py::ssize_t(v.size()), v.data());
 }
 
+// A numpy array (or anything array-like) as a vector of T, copied at once: not
+// element by element, as a std::vector argument or a list would be.
 template <class T>
 std::vector<T> fromNumpy(const py::handle& a) {
-    return py::cast<std::vector<T>>(py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a).attr("tolist")());
+    const auto arr = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+    if (!arr) throw py::type_error("expected an array of numbers");
+    return {arr.data(), arr.data() + arr.size()};
 }
-
-// An integer array from numpy, copied at once (not element by element, as a std::vector argument would be).
-using Int64s = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>;
-std::vector<std::int64_t> vectorOf(const Int64s& a) { return {a.data(), a.data() + a.size()}; }
 
 py::array_t<double> eventArray(const RunEvent& e) {
     return toNumpy(std::vector<double>{double(e.step), e.time, e.meanStrain, e.fracture});
@@ -288,9 +288,11 @@ PYBIND11_MODULE(_core, m) {
         "True if a chain of intact bars (intact[bar] != 0) joins a node of a to a node of b: Simulation.run's separation test");
     m.def(
         "max_flow",
-        [](std::int64_t nodes, const Int64s& n1, const Int64s& n2, const Int64s& capacity, const Int64s& sources,
-           const Int64s& sinks) {
-            return maxFlow(nodes, vectorOf(n1), vectorOf(n2), vectorOf(capacity), vectorOf(sources), vectorOf(sinks));
+        [](std::int64_t nodes, const py::handle& n1, const py::handle& n2, const py::handle& capacity,
+           const py::handle& sources, const py::handle& sinks) {
+            using I = std::int64_t;
+            return maxFlow(nodes, fromNumpy<I>(n1), fromNumpy<I>(n2), fromNumpy<I>(capacity), fromNumpy<I>(sources),
+                           fromNumpy<I>(sinks));
         },
         py::arg("nodes"), py::arg("n1"), py::arg("n2"), py::arg("capacity"), py::arg("sources"), py::arg("sinks"),
         "the maximum flow from sources to sinks over the undirected edges {n1, n2} of integer capacity "
