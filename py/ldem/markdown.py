@@ -65,6 +65,18 @@ def damping_words(ps) -> str:
     return f"zeta = {ps[0]['zeta']:g} on omega_1 (D_f = 2 zeta omega_1, mass-proportional){tail}"
 
 
+def loss_fraction_words(ps) -> str:
+    """The load loss's stress fraction of the cases (their parameters ps), and
+    the loads and sizes that had another one (the study's triangular hinges)."""
+    first, other = ps[0]["stop_fraction"], {}
+    for q in ps:
+        if q["stop_fraction"] != first:
+            other.setdefault((q["stop_fraction"], q["load"]), set()).add(q["size"])
+    words = "; ".join(f"{f:g} x peak for the {ld} cubes of " + ", ".join(f"{s:g}" for s in sorted(sizes)) + " m"
+                      for (f, ld), sizes in sorted(other.items()))
+    return f"{first:g} x peak" + (f" ({words})" if words else "")
+
+
 def cost_section(case_rows) -> list:
     """The Cost section: per load, the cases' wall times added up (what the
     study costs one case at a time), the longest, and the commits they ran on."""

@@ -14,7 +14,8 @@ import numpy as np  # noqa: E402
 
 from . import io, plots  # noqa: E402
 from .curves import mean_curve  # noqa: E402
-from .markdown import cost_section, damping_words, md_table, num_cell, pct, stop_rule, tail_drive_words  # noqa: E402
+from .markdown import (cost_section, damping_words, loss_fraction_words, md_table, num_cell, pct,  # noqa: E402
+                       stop_rule, tail_drive_words)
 
 
 class Case(NamedTuple):
@@ -227,8 +228,8 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
                             "same L0)"],
               ["load loss", "bars broke and the stress averaged over "
                             + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
-                            + f" < {p['stop_fraction']:g} x peak; then the drive speeds up "
-                              f"{p.get('loss_speedup', 1):g} times" + tail_drive_words(p)],
+                            + f" < {loss_fraction_words([c.summary['parameters'] for c in cases])}; then the drive "
+                              f"speeds up {p.get('loss_speedup', 1):g} times" + tail_drive_words(p)],
               ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]

@@ -82,7 +82,7 @@ def test_the_report_names_each_stop_with_its_number_and_reads_older_runs():
 def test_the_size_effect_study_damps_the_tails_of_its_larger_cubes_relative_to_their_mean():
     tests = study.size_effect_tests([0.48, 0.72, 0.96], 1, ["uniform", "triangular"])
     assert [t.tail_damping for t in tests] == ["absolute", "relative", "relative"] * 2
-    pace = "_crack_pace0.0625_crack_secant0.9"
+    pace = "_crack_pace0.0625_crack_kinetic0.01_crack_secant0.9"
     assert [study.case_name(t) for t in tests[:2]] == [f"uniform_0.48m_s1{pace}",
                                                        f"uniform_0.72m_s1{pace}_tail_dampingrelative"]
     tests = study.size_effect_tests([0.48, 0.96], 1, ["uniform"], tail_damping="absolute")  # --set
@@ -96,10 +96,23 @@ def test_the_size_effect_study_paces_its_drive_near_the_peak_and_set_gives_the_c
     while a crack runs (STUDY_PACE); --set crack_pace=1 is the constant rate,
     and its case folder is the plain one."""
     tests = study.size_effect_tests([0.12, 0.96], 1, ["uniform", "triangular"])
-    assert {(t.crack_pace, t.crack_secant) for t in tests} == {(0.0625, 0.9)}
+    assert {(t.crack_pace, t.crack_secant, t.crack_kinetic) for t in tests} == {(0.0625, 0.9, 0.01)}
     assert ldem.CubeTest().crack_pace == 1.0  # ldem cube's default is still the constant rate
-    tests = study.size_effect_tests([0.12], 1, ["uniform"], crack_pace=1.0, crack_secant=0.0)  # --set
+    tests = study.size_effect_tests([0.12], 1, ["uniform"], crack_pace=1.0, crack_secant=0.0, crack_kinetic=1e-3)
     assert (tests[0].crack_pace, study.case_name(tests[0])) == (1.0, "uniform_0.12m_s1")
+
+
+def test_the_study_hands_a_large_triangular_cube_to_the_tail_drive_below_a_tenth_of_its_peak():
+    """From 0.72 m on (the relative tail) a triangular case that stops past its
+    peak loses its load at stop_fraction 0.1, and the report says so; the other
+    cases, and a triangular stop at the load loss, keep CubeTest's 0.01."""
+    from ldem.markdown import loss_fraction_words
+
+    tests = study.size_effect_tests([0.48, 0.72, 0.96], 1, ["uniform", "triangular"])
+    assert [t.stop_fraction for t in tests] == [0.01, 0.01, 0.01, 0.01, 0.1, 0.1]
+    assert [t.stop_fraction for t in study.size_effect_tests([0.96], 1, ["triangular"], "load_loss")] == [0.01]
+    words = loss_fraction_words([t.parameters() for t in tests])
+    assert words == "0.01 x peak (0.1 x peak for the triangular cubes of 0.72, 0.96 m)"
 
 
 def test_the_report_names_the_tail_damping_and_the_sizes_that_had_it_and_reads_older_runs():
