@@ -67,8 +67,8 @@ STUDY_PACE = {"crack_pace": 0.0625, "crack_secant": 0.9, "crack_kinetic": 0.01}
 # takes over once the hinge carries less than a tenth of the peak: the study's
 # triangular "load loss" is at stop_fraction 0.1 there (its columns in cases.csv).
 # On the 0.72 m cube (seed 1) that takes 0.70 of the steps; U at the stop moves
-# by +0.45 %, the stress past 3 x the strain at the peak by up to 1.2 % of the
-# peak, as much as a quarter of the rate moves it (results/dynamics/cube_rate.md).
+# by +0.45 %, the stress past 3 x the strain at the peak by up to 1.1 % of the
+# peak; a quarter of the rate moves it by up to 2.0 % (results/dynamics/cube_rate.md).
 TRIANGULAR_TAIL_FRACTION = 0.1
 
 
