@@ -77,6 +77,14 @@ def loss_fraction_words(ps) -> str:
     return f"{first:g} x peak" + (f" ({words})" if words else "")
 
 
+def load_loss_words(ps) -> str:
+    """The report's load-loss rule for the cases (their parameters ps; the first one's window and drive)."""
+    p = ps[0]
+    window = f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods"
+    return (f"bars broke and the stress averaged over {window} < {loss_fraction_words(ps)}; then the drive speeds "
+            f"up {p.get('loss_speedup', 1):g} times" + tail_drive_words(p))
+
+
 def cost_section(case_rows) -> list:
     """The Cost section: per load, the cases' wall times added up (what the
     study costs one case at a time), the longest, and the commits they ran on."""

@@ -14,8 +14,7 @@ import numpy as np  # noqa: E402
 
 from . import io, plots  # noqa: E402
 from .curves import mean_curve  # noqa: E402
-from .markdown import (cost_section, damping_words, loss_fraction_words, md_table, num_cell, pct,  # noqa: E402
-                       stop_rule, tail_drive_words)
+from .markdown import cost_section, damping_words, load_loss_words, md_table, num_cell, pct, stop_rule  # noqa: E402
 
 
 class Case(NamedTuple):
@@ -226,10 +225,7 @@ def write_report(out, cases, case_rows, table, fits, figs, damping_rows=None, di
               ["damping", damping_words([c.summary["parameters"] for c in cases])],
               ["time step", f"{first['dt_s']:.4g} s = {p['dt_safety']:g} x 2/omega_max (same for every size: "
                             "same L0)"],
-              ["load loss", "bars broke and the stress averaged over "
-                            + (f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods")
-                            + f" < {loss_fraction_words([c.summary['parameters'] for c in cases])}; then the drive "
-                              f"speeds up {p.get('loss_speedup', 1):g} times" + tail_drive_words(p)],
+              ["load loss", load_loss_words([c.summary["parameters"] for c in cases])],
               ["stop", "; ".join(dict.fromkeys(stop_rule(c.summary["parameters"]) for c in cases))],
           ]), ""]
     md += ["## Peak stress and strain at peak", ""]
