@@ -51,8 +51,9 @@ def tail_settings(size: float) -> dict:
 # of a numerical aid is the quarter rate: with this pace the 0.48 m cube passes
 # it in both loads (peak -0.12 %, energy +0.66 %), so does the 0.72 m cube (peaks
 # within 0.08 %, energies within 1.61 %), and the 0.96 m cube's energy
-# moves by +4.5 % at a mean strain of 5e-4 (+13.0 % without). It costs the study
-# 1.71 times its thread-seconds (results/separation/study_paced/). --set
+# moves by +4.5 % at a mean strain of 5e-4 (+13.0 % without). It cost the study
+# 1.71 times its thread-seconds (results/separation/study_paced/), the study
+# with TRIANGULAR_TAIL_FRACTION below 0.77 of that (study_hinge/). --set
 # crack_pace=1 runs the constant rate. The damping study (damping_tests) keeps
 # the constant rate. A crack runs while bars soften and the specimen's own
 # kinetic energy is above crack_kinetic x the work: at cube_rate.md's 1e-3 the
