@@ -22,7 +22,7 @@ import numpy as np  # noqa: E402
 import ldem  # noqa: E402
 import ldem.plots  # noqa: E402,F401  (the figures' style, whose dpi the gallery keeps)
 from ldem import study  # noqa: E402
-from ldem.cube import settings  # noqa: E402
+from ldem.helptext import settings  # noqa: E402
 from ldem.runner import default_writers  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))

@@ -157,7 +157,7 @@ def main(argv):
     # The spec's scheme (the reference's and YADE's): no bar dashpots, 0.4 of 2/omega_max.
     test = ldem.CubeTest(size=n * a.L0, L0=a.L0, load=a.load, Gf_cv=0.0, zeta=a.zeta, strain_rate=a.strain_rate,
                          stop_at="load_loss", final_strain=a.final_strain, record_every=1, threads=1,
-                         zeta_high=0.0, dt_safety=0.4)
+                         zeta_high=0.0, dt_safety=0.4, crack_pace=1.0)  # the YADE scene's drive: a constant rate
     lr = test.run()
     t_ldem = time.time() - t0
     lc, s = lr.curve, lr.summary

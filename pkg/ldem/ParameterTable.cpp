@@ -109,6 +109,18 @@ const std::vector<ParamInfo>& cubeTestParameters() {
     return table;
 }
 
+const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults() {
+    static const std::vector<std::pair<std::string, ParamValue>> own = {
+        {"crack_pace", 0.0625}, {"crack_secant", 0.9}, {"crack_kinetic", 0.01}};
+    return own;
+}
+
+CubeTestParams cubeTestDefaults() {
+    CubeTestParams p;
+    for (const auto& [name, value] : cubeOwnDefaults()) setParameter(p, name, value);
+    return p;
+}
+
 namespace {
 const std::string& groupOf(const std::string& name) {
     for (const ParamInfo& p : cubeTestParameters())

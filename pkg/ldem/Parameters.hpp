@@ -98,15 +98,15 @@
       "over the record's steps")                                                                             \
     X(double, crackPace, "crack_pace", 1.0, "", Domain::openClosed(0, 1),                                    \
       "tail_drive adaptive: the drive's velocity factor (over strain_rate) before the load loss while the "  \
-      "lattice moves by itself (crack_kinetic; 1, the default: never slowed; 0.0625 on the cubes: "          \
-      "dynamics/CrackPace.hpp)")                                                                             \
+      "lattice moves by itself (crack_kinetic; 1: never slowed, a file's default; 0.0625: the cube's, "       \
+      "cubeOwnDefaults in ParameterTable.hpp; dynamics/CrackPace.hpp)")                                     \
     X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
       "tail_drive adaptive: the kinetic energy less the drive's quasi-static motion, over the external "     \
       "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)") \
     X(double, crackSecant, "crack_secant", 0.0, "", Domain::closed(0, 1),                                    \
       "tail_drive adaptive: the drive also slows to crack_pace near the peak, while the curve's secant "      \
       "stress / strain is below crack_secant x its elastic value and the stress above crack_band x the "     \
-      "peak so far (0, the default: off; dynamics/CrackPace.hpp)")                                            \
+      "peak so far (0: off, a file's default; 0.9: the cube's; dynamics/CrackPace.hpp)")                     \
     X(double, crackBand, "crack_band", 0.5, "", Domain::open(0, 1),                                          \
       "tail_drive adaptive: crack_secant's band: the stress, over the peak so far, below which the curve "    \
       "is past its snap and the drive is no longer slowed for its secant")

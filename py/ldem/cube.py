@@ -135,35 +135,24 @@ def quasi_static(summary) -> dict:
             "kinetic_limit": KINETIC_AT_PEAK_LIMIT, "flagged": summary.quasi_static_flagged}
 
 
-def settings(pairs) -> dict:
-    """--set NAME=VALUE pairs (ldem study, ldem run) as CubeTest fields of the right type."""
-    fields = {f.name: f for f in dataclasses.fields(CubeTest)}
-    out = {}
-    for pair in pairs:
-        name, sep, value = pair.partition("=")
-        name = name.strip().replace("-", "_")
-        if not sep or name not in fields:
-            raise ValueError(f"--set takes NAME=VALUE with NAME a parameter of ldem cube --help (got '{pair}')")
-        kind = type(fields[name].default)
-        try:
-            out[name] = kind(value)
-        except ValueError:
-            what = {int: "an integer", float: "a number"}[kind]
-            raise ValueError(f"--set {name}: '{value}' is not {what}") from None
-    return out
+# The cube's own defaults over the table's (which are every specimen's from a
+# file): its paced drive (pkg/ldem/ParameterTable.hpp, cubeOwnDefaults, says why).
+CUBE_DEFAULTS = _core.cube_own_defaults()
 
 
 def _field(p: dict) -> tuple:
     metadata = {"unit": p["unit"], "help": p["help"], "group": p["group"], "domain": p["domain"]}
     if p["choices"]:
         metadata["choices"] = tuple(p["choices"])
-    return p["name"], _KINDS[p["kind"]], dataclasses.field(default=p["default"], metadata=metadata)
+    default = CUBE_DEFAULTS.get(p["name"], p["default"])
+    return p["name"], _KINDS[p["kind"]], dataclasses.field(default=default, metadata=metadata)
 
 
 CubeTest = dataclasses.make_dataclass(
     "CubeTest", [_field(p) for p in PARAMETERS], bases=(_CubeTestMethods,),
     namespace={"__doc__": "A concrete cube pulled in tension: geometry, material, loading, run control. One field "
-                          "per parameter of ldem.PARAMETERS (pkg/ldem/Parameters.hpp), with its default.",
+                          "per parameter of ldem.PARAMETERS (pkg/ldem/Parameters.hpp), with its default "
+                          "(CUBE_DEFAULTS: the cube's own).",
                "__module__": __name__})
 
 

@@ -1,5 +1,6 @@
 """Help texts of the command line (`ldem ...`, `ldem study ...`)."""
 import argparse
+import dataclasses
 
 
 def parameter_help(field, note: str = "", each: str = "") -> str:
@@ -38,3 +39,23 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
         if action.default in (None, False, "", [], argparse.SUPPRESS):
             return action.help
         return super()._get_help_string(action)
+
+
+def settings(pairs) -> dict:
+    """--set NAME=VALUE pairs (ldem study, ldem run) as CubeTest fields of the right type."""
+    from .cube import CubeTest
+
+    fields = {f.name: f for f in dataclasses.fields(CubeTest)}
+    out = {}
+    for pair in pairs:
+        name, sep, value = pair.partition("=")
+        name = name.strip().replace("-", "_")
+        if not sep or name not in fields:
+            raise ValueError(f"--set takes NAME=VALUE with NAME a parameter of ldem cube --help (got '{pair}')")
+        kind = type(fields[name].default)
+        try:
+            out[name] = kind(value)
+        except ValueError:
+            what = {int: "an integer", float: "a number"}[kind]
+            raise ValueError(f"--set {name}: '{value}' is not {what}") from None
+    return out

@@ -190,7 +190,7 @@ def report_run(result, args, edge: bool = False) -> int:
 
 
 def cmd_run(args) -> int:
-    from .cube import settings
+    from .helptext import settings
     from .runner import run_cube
     from .specimen import SpecimenTest
 

@@ -168,6 +168,14 @@ PYBIND11_MODULE(_core, m) {
             return rows;
         },
         "every parameter of a cube test: group, name, unit, help, kind (float/int/choice), default, domain, choices");
+    m.def(
+        "cube_own_defaults",
+        [] {
+            py::dict d;
+            for (const auto& [name, value] : cubeOwnDefaults()) d[py::str(name)] = value;
+            return d;
+        },
+        "the cube's own defaults over the table's (ldem.CubeTest, ldem cube): its paced drive");
     // A group's struct: Material(E=..., nu=...) with its parameters as keyword
     // arguments, each an attribute with its help, validate(), and a repr.
     auto groupStruct = [&](auto cls, const std::string& group) {

@@ -4,7 +4,7 @@
 #include "ldem/Simulation.hpp"
 
 int main() {
-    ldem::CubeTestParams p;
+    ldem::CubeTestParams p = ldem::cubeTestDefaults();  // what ldem cube runs on its defaults
     ldem::setParameter(p, "size", 0.04);
     ldem::setParameter(p, "strain_rate", 0.5);
     ldem::setParameter(p, "stop_at", std::string("load_loss"));

@@ -6,7 +6,7 @@ energy at the load loss moves by less than 2 % when the rate is quartered
 (criterion (b) of results/dynamics/criteria.md), the unpaced one's by more than 4 %;
 and on the coarse notched beam, whose own motion under the drive is near 1e-3
 of the work, the pace (which counts the kinetic energy less that motion)
-leaves the peak where the unpaced drive puts it."""
+leaves the peak where the unpaced drive puts it. The pace is the cube's default (cube.CUBE_DEFAULTS)."""
 import json
 import os
 
@@ -57,8 +57,11 @@ def test_the_tail_damping_leaves_the_paced_drive_alone_until_the_load_loss(tmp_p
 
 @pytest.fixture(scope="module")
 def cube048(tmp_path_factory):
-    return {(pace, q): run(tmp_path_factory, "--size", "0.48", "--strain-rate", str(0.02 / q), "--crack-pace", pace)
-            for pace in ("0.0625", "1") for q in (1, 4)}
+    """The 0.48 m uniform cube at its default drive (paced: cube.CUBE_DEFAULTS) and at the constant rate, each at
+    0.02 /s and a quarter of it."""
+    return {(pace, q): run(tmp_path_factory, "--size", "0.48", "--strain-rate", str(0.02 / q),
+                           *(["--crack-pace", pace] if pace == "1" else []))
+            for pace in ("default", "1") for q in (1, 4)}
 
 
 def test_the_paced_drive_gives_the_quarter_rates_fracture_energy(cube048):
@@ -67,11 +70,11 @@ def test_the_paced_drive_gives_the_quarter_rates_fracture_energy(cube048):
         if key == "U":
             return a["load_loss"]["fracture_energy_J"] / b["load_loss"]["fracture_energy_J"] - 1
         return a["peak_stress_MPa"] / b["peak_stress_MPa"] - 1
-    # Measured: paced +1.53 % (22.02 J against 21.69 J), unpaced +6.5 % (23.21 J against 21.80 J);
-    # the peaks +0.49 % and +0.51 %.
-    assert abs(change("0.0625", "U")) < 0.02
+    # Measured: at the default +0.81 % (21.344 J against 21.174 J), at the constant rate +6.5 % (23.21 J
+    # against 21.80 J); the peaks -0.08 % and +0.51 %. (The pace on K_own alone, crack_kinetic 1e-3: +1.53 %.)
+    assert abs(change("default", "U")) < 0.02
     assert change("1", "U") > 0.04
-    assert abs(change("0.0625", "peak")) < 0.01
+    assert abs(change("default", "peak")) < 0.01
     for s in cube048.values():
         assert s["energy_balance_error"] < 2e-3
 
@@ -112,7 +115,7 @@ def test_the_secant_slows_the_drive_from_the_bend_of_the_curve(tmp_path_factory)
     def speed(c, row):  # mean strain per step over the record interval ending at row
         return (c["mean_strain"][row] - c["mean_strain"][row - 1]) / (c["step"][row] - c["step"][row - 1])
 
-    (a, sa), (b, sb) = curve(), curve("--crack-secant", "0.9")
+    (a, sa), (b, sb) = curve("--crack-secant", "0"), curve("--crack-secant", "0.9")
     assert sb["load_loss"]["step"] > sa["load_loss"]["step"]
     straight = np.searchsorted(a["mean_strain"], 0.25 * sa["strain_at_peak"])  # a quarter of the peak strain: straight
     assert speed(b, straight) == pytest.approx(speed(a, straight), rel=1e-9)

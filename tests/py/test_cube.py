@@ -188,18 +188,24 @@ def test_curve_csv_columns_carry_their_physics(tmp_path):
 
 def test_cube_test_fields_are_the_parameter_table():
     """One declaration (pkg/ldem/Parameters.hpp): CubeTest's fields, their types,
-    defaults, units and choices are the table's; the C++ struct holds what was set."""
+    defaults, units and choices are the table's, but the defaults the cube declares
+    its own (CUBE_DEFAULTS: its paced drive), each of them in its domain; the C++
+    struct holds what was set."""
     import dataclasses
 
     from ldem import _core
+    from ldem.cube import CUBE_DEFAULTS
 
     table = _core.parameter_table()
     fields = dataclasses.fields(ldem.CubeTest)
     assert [f.name for f in fields] == [p["name"] for p in table]
+    assert set(CUBE_DEFAULTS) == {"crack_pace", "crack_secant", "crack_kinetic"}
     for f, p in zip(fields, table):
-        assert f.default == p["default"] and f.metadata["unit"] == p["unit"] and f.metadata["help"] == p["help"]
+        assert f.default == CUBE_DEFAULTS.get(p["name"], p["default"])
+        assert f.metadata["unit"] == p["unit"] and f.metadata["help"] == p["help"]
         assert f.type is {"float": float, "int": int, "choice": str}[p["kind"]]
         assert f.metadata.get("choices", ()) == tuple(p["choices"])
+    ldem.CubeTest().params()  # the cube's own defaults are valid
     params = ldem.CubeTest(nu=0.3, load="triangular", seed=4, Gf_draw="module").params()
     assert (params["nu"], params["load"], params["seed"], params["Gf_draw"]) == (0.3, "triangular", 4, "module")
     assert params.material.nu == 0.3 and params.loading.load == "triangular" and params.run.seed == 4

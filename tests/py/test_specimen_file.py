@@ -190,7 +190,7 @@ def _file(tmp_path, text, base="cube_uniform"):
         "[measure]", "[groups.all]\nbox = {min = [0, 0, 0], max = [0.12, 0.12, 0.12]}\n\n[measure]"),
      "measure.loaded: groups 'all' and 'top' share nodes"),
     (lambda s: s + "\n[material]\nnu = 0.7\n", "material.nu: nu must be in"),
-    (lambda s: s + "\n[loading]\nload = 'triangular'\n", "loading.load: a cube-test parameter"),
+    (lambda s: s.replace("[loading]\n", "[loading]\nload = 'triangular'\n"), "loading.load: a cube-test parameter"),
     (lambda s: s + "\n[run]\nseed = 'one'\n", "run.seed: must be int"),
     (lambda s: s.replace("area = 0.0144", "area = -1"), "measure.area: must be positive"),
     (lambda s: s.replace("area = 0.0144", "area = 0.0144\nstress_label = 2"), "measure.stress_label: must be a text"),

@@ -7,8 +7,8 @@ import argparse
 import dataclasses
 from typing import List, Sequence
 
-from ..cube import CubeTest, settings
-from ..helptext import add_output_flags, add_parameter_option, parameter_help
+from ..cube import CubeTest
+from ..helptext import add_output_flags, add_parameter_option, parameter_help, settings
 from .executors import default_threads
 
 FIELDS = {f.name: f for f in dataclasses.fields(CubeTest)}  # one per row of the parameter table

@@ -30,7 +30,7 @@ TRIANGULAR_CONVERGED_COST = ("about 55 min a 0.96 m case on 2 cores, 5.5 h for i
 # there (tail_damping relative, dynamics/MassDamping.hpp): the speed-up drags
 # nothing, the uniform cubes take 0.39-0.42 of the steps, and U_num is within
 # 0.13 % of the absolute damping's on all twelve specimens (measured at the
-# constant rate, before STUDY_PACE below). Below 0.72 m the tail breaks much of
+# constant rate, before the pace below). Below 0.72 m the tail breaks much of
 # U_num and the two differ: relative damping moved the means by +1.7, +3.6 and
 # -0.8 % at 0.12, 0.24 and 0.48 m, and on the two small cubes also run with no
 # speed-up it was the farther from them (results/dynamics/relative_damping.md).
@@ -43,24 +43,22 @@ def tail_settings(size: float) -> dict:
     return {"tail_damping": "relative"} if size >= RELATIVE_TAIL_FROM_M else {}
 
 
-# The study's drive slows to a sixteenth of its rate near the peak and while a
-# crack runs (dynamics/CrackPace.hpp). At a constant 0.02 /s a large cube snaps
-# back at its peak while the drive keeps working: the 0.96 m cube's (seed 1)
-# energy just past its load loss is 129.6 J, and 104.4 J at 0.000625 /s, where
-# the rate no longer moves it (results/dynamics/cube_rate.md). The spec's test
-# of a numerical aid is the quarter rate: with this pace the 0.48 m cube passes
-# it in both loads (peak -0.12 %, energy +0.66 %), so does the 0.72 m cube (peaks
-# within 0.08 %, energies within 1.61 %), and the 0.96 m cube's energy
-# moves by +4.5 % at a mean strain of 5e-4 (+13.0 % without). It cost the study
-# 1.71 times its thread-seconds (results/separation/study_paced/), the study
-# with TRIANGULAR_TAIL_FRACTION below 0.77 of that (study_hinge/). --set
-# crack_pace=1 runs the constant rate. The damping study (damping_tests) keeps
-# the constant rate. A crack runs while bars soften and the specimen's own
-# kinetic energy is above crack_kinetic x the work: at cube_rate.md's 1e-3 the
+# The study's drive is the cube's (cube.CUBE_DEFAULTS): it slows to a sixteenth
+# of its rate near the peak and while a crack runs (dynamics/CrackPace.hpp). At
+# a constant 0.02 /s a large cube snaps back at its peak while the drive keeps
+# working: the 0.96 m cube's (seed 1) energy just past its load loss is 129.6 J,
+# and 104.4 J at 0.000625 /s, where the rate no longer moves it
+# (results/dynamics/cube_rate.md). The spec's test of a numerical aid is the
+# quarter rate: paced, the 0.48 and 0.72 m cubes pass it in both loads (peaks
+# within 0.08 %, energies within 1.61 %), and the 0.96 m cube's energy moves by
+# +4.5 % at a mean strain of 5e-4 (+13.0 % without). It cost the study 1.71
+# times its thread-seconds (results/separation/study_paced/), the study with
+# TRIANGULAR_TAIL_FRACTION below 0.77 of that (study_hinge/). --set
+# crack_pace=1 runs the constant rate. A crack runs while bars soften and the
+# specimen's own kinetic energy is above crack_kinetic x the work: at 1e-3 the
 # triangular cube's ringing after its snap held the pace at a sixteenth for a
 # third of its steps; at 1e-2 the quarter rate still passes (seed 1, 0.48 and
 # 0.72 m, results/dynamics/cube_rate.md, "crack_kinetic 1e-2").
-STUDY_PACE = {"crack_pace": 0.0625, "crack_secant": 0.9, "crack_kinetic": 0.01}
 
 # Past its snap a triangular cube hangs on its hinge and softens slowly, at a
 # tenth to a fiftieth of its peak, to the study's stop at 10 x its strain at the
@@ -77,7 +75,7 @@ def study_settings(size: float, load: str = "uniform", stop: str = "separation")
     """What the size-effect study sets beside CubeTest's defaults for a cube of this size, load and stop."""
     tail = tail_settings(size)
     hinge = {"stop_fraction": TRIANGULAR_TAIL_FRACTION} if tail and (load, stop) == ("triangular", "past_peak") else {}
-    return {**STUDY_PACE, **tail, **hinge}
+    return {**tail, **hinge}
 
 
 def size_effect_tests(sizes: Iterable[float], seeds: int, loads: Iterable[str], triangular_stop: str = "past_peak",
