@@ -25,6 +25,9 @@ from .mincut import cheapest_cut
 # unit, help, kind, default, domain, choices. CubeTest's fields, `ldem cube`'s
 # options, summary.json's "parameters" and a study's case keys all come from it.
 PARAMETERS = _core.parameter_table()
+# The table's defaults by name: a file's specimen's, and what a run made before a
+# parameter was declared ran at.
+TABLE_DEFAULTS = {p["name"]: p["default"] for p in PARAMETERS}
 _KINDS = {"float": float, "int": int, "choice": str}
 
 

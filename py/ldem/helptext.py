@@ -2,6 +2,8 @@
 import argparse
 import dataclasses
 
+from .cube import CubeTest
+
 
 def parameter_help(field, note: str = "", each: str = "") -> str:
     """The help of an option of a parameter, a field of ldem.CubeTest: the
@@ -43,8 +45,6 @@ class HelpFormatter(argparse.ArgumentDefaultsHelpFormatter):
 
 def settings(pairs) -> dict:
     """--set NAME=VALUE pairs (ldem study, ldem run) as CubeTest fields of the right type."""
-    from .cube import CubeTest
-
     fields = {f.name: f for f in dataclasses.fields(CubeTest)}
     out = {}
     for pair in pairs:

@@ -64,7 +64,7 @@ def field(summary: dict, path: str):
 def rerun_test_of(summary: dict, path: str):
     """The test a summary's parameters describe: a cube test's fields, or an `ldem run` specimen's description
     with the parameters it ran with (its file's, with --set)."""
-    from .cube import PARAMETERS, CubeTest
+    from .cube import TABLE_DEFAULTS, CubeTest
     from .specimen import SpecimenTest
 
     params = summary.get("parameters") or {}
@@ -76,8 +76,8 @@ def rerun_test_of(summary: dict, path: str):
     cube = {k: v for k, v in params.items() if k in known}
     if not cube:
         raise ValueError(f"{path} holds no parameters to rerun")
-    # One declared after the run ran at the core's default (a cube's own, CUBE_DEFAULTS, came later).
-    return CubeTest(**{**{p["name"]: p["default"] for p in PARAMETERS}, **cube})
+    # One declared after the run ran at the table's default (a cube's own, CUBE_DEFAULTS, came later).
+    return CubeTest(**{**TABLE_DEFAULTS, **cube})
 
 
 def cmd_rerun(args) -> int:

@@ -32,7 +32,7 @@ from typing import Optional
 import numpy as np
 
 from . import _core
-from .cube import PARAMETERS, CubeResult, run_test
+from .cube import PARAMETERS, TABLE_DEFAULTS, CubeResult, run_test
 from .shapes import AXES, Nodes, SpecimenError, Where, check_keys, module_mask, named, number, point
 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
@@ -217,7 +217,7 @@ class Build:
 def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     """Every CubeTest parameter of the material, loading and run groups: the
     file's values over the defaults, then the overrides (--set)."""
-    out = {p["name"]: p["default"] for p in PARAMETERS}
+    out = dict(TABLE_DEFAULTS)
     given = [(section, k, v, False) for section in ("material", "loading", "run")
              for k, v in (data.get(section) or {}).items()]
     given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v, True) for k, v in overrides.items()]

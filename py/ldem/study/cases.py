@@ -25,7 +25,7 @@ import shutil
 from typing import Dict, List, Optional, Sequence
 
 from .. import io
-from ..cube import PARAMETERS, CubeTest
+from ..cube import TABLE_DEFAULTS, CubeTest
 
 
 def _number(v) -> str:
@@ -107,10 +107,10 @@ class Named:
 
 def _comparable(params: dict, test) -> dict:
     """The parameters that decide a case's result (threads, at any depth, do
-    not); for a CubeTest one declared after the case ran counts at the core's
+    not); for a CubeTest one declared after the case ran counts at the table's
     default (the run it made: a cube's own default, CUBE_DEFAULTS, came later)."""
     if isinstance(test, CubeTest):
-        return {p["name"]: params.get(p["name"], p["default"]) for p in PARAMETERS if p["name"] != "threads"}
+        return {k: params.get(k, d) for k, d in TABLE_DEFAULTS.items() if k != "threads"}
     if isinstance(params, dict):
         return {k: _comparable(v, test) for k, v in params.items() if k != "threads"}
     return params
