@@ -243,3 +243,19 @@ def test_a_finished_run_is_extended_bit_for_bit(cli, tmp_path):
                str(separated)).returncode == 0
     assert not (separated / "final_state.npz").exists()
     _one_line_exit_2(cli("cube", "--restart", str(separated), "--extend", "1", *args[-2:]), "the run separated")
+
+
+def test_ldem_run_extends_a_finished_specimen_bit_for_bit(cli, tmp_path):
+    """--extend with `ldem run` too: a specimen's parameters sit under "parameters", beside its
+    description, and its final strain, stop and threads were compared there, so every extension
+    of a specimen was refused ("is of other parameters"). Extended on 2 threads, run on 1."""
+    f, args = f"{ROOT}/tests/data/beam_small.toml", ["--no-progress", "--no-plots"]
+    short, whole = tmp_path / "short", tmp_path / "whole"
+    assert cli("run", f, "--set", "final_strain=2e-4", "--threads", "1", "--out", str(short), *args).returncode == 0
+    _one_line_exit_2(cli("run", f, "--set", "seed=2", "--out", str(short), "--restart", "--extend", "4e-4", *args),
+                     "is of other parameters")
+    r = cli("run", f, "--threads", "2", "--out", str(short), "--restart", "--extend", "4e-4", *args)
+    assert r.returncode == 0, r.stderr
+    assert cli("run", f, "--set", "final_strain=4e-4", "--threads", "1", "--out", str(whole), *args).returncode == 0
+    assert (short / "curve.csv").read_bytes() == (whole / "curve.csv").read_bytes()
+    assert json.loads((short / "summary.json").read_text())["restarted_at_step"] > 0

@@ -56,6 +56,15 @@ def discard_checkpoint(out: str) -> None:
         os.remove(os.path.join(out, CHECKPOINT))
 
 
+def _fixed(parameters: dict, free: tuple) -> dict:
+    """The parameters a restart must find unchanged: all but the free ones, at the top (a cube's) and
+    under "parameters" (a specimen's, beside its description)."""
+    kept = {k: v for k, v in parameters.items() if k not in free}
+    if isinstance(kept.get("parameters"), dict):
+        kept["parameters"] = _fixed(kept["parameters"], free)
+    return kept
+
+
 def restore(test, sim, out: str, extend: bool = False) -> tuple:
     """sim set back to out's checkpoint.npz (with extend: to its
     final_state.npz, the test's stop may be a later one), curve.csv cut to its
@@ -66,8 +75,7 @@ def restore(test, sim, out: str, extend: bool = False) -> tuple:
     except OSError as e:
         raise ValueError(f"cannot {'extend' if extend else 'restart'}: {path}: {e.strerror or e}") from None
     free = ("threads",) + (EXTENSIBLE if extend else ())
-    mine = {k: v for k, v in test.parameters().items() if k not in free}
-    if {k: v for k, v in parameters.items() if k not in free} != mine:
+    if _fixed(parameters, free) != _fixed(test.parameters(), free):
         raise ValueError(f"cannot {'extend' if extend else 'restart'}: {path} is of other parameters")
     rows = cut_curve_after(os.path.join(out, CURVE), int(state["counters"][0]))
     reached = float(rows[-1]["mean_strain"]) if rows else 0.0
