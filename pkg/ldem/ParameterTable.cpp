@@ -1,6 +1,7 @@
 #include "ldem/ParameterTable.hpp"
 
 #include "ldem/Relations.hpp"
+#include "ldem/dynamics/QuasiStatic.hpp"
 
 #include <algorithm>
 #include <climits>
@@ -112,6 +113,11 @@ const std::vector<ParamInfo>& cubeTestParameters() {
 const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults() {
     static const std::vector<std::pair<std::string, ParamValue>> own = {
         {"crack_pace", 0.0625}, {"crack_secant", 0.9}, {"crack_kinetic", 0.01}};
+    return own;
+}
+
+const std::vector<std::pair<std::string, ParamValue>>& specimenOwnDefaults() {
+    static const std::vector<std::pair<std::string, ParamValue>> own = {{"rate_periods", kSpecimenRatePeriods}};
     return own;
 }
 

@@ -54,6 +54,12 @@ const std::vector<ParamInfo>& cubeTestParameters();
 const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults();
 // A cube test at its defaults: the table's, then cubeOwnDefaults().
 CubeTestParams cubeTestDefaults();
+// A specimen's own defaults over the table's, for one described in a file
+// (py/ldem/specimen.py): rule (c) sets its rate from its own fundamental
+// period, eps_p in kSpecimenRatePeriods periods (dynamics/QuasiStatic.hpp), where the
+// table's strain_rate, a cube's, is a guess (a 1 m beam: 1.7 periods, a
+// compression cube: 35). A file that gives strain_rate is driven at it.
+const std::vector<std::pair<std::string, ParamValue>>& specimenOwnDefaults();
 
 // By name; an unknown name, a wrong type or an unknown choice throws
 // std::invalid_argument naming the parameter.

@@ -70,8 +70,9 @@ def rerun_test_of(summary: dict, path: str):
     params = summary.get("parameters") or {}
     if "description" in params:  # the parameters its file does not give came from --set
         given = SpecimenTest(params["description"]).build.params
-        return SpecimenTest(params["description"], overrides={k: v for k, v in params["parameters"].items()
-                                                              if given.get(k) != v})
+        ran = {**TABLE_DEFAULTS, **params["parameters"]}  # one declared after the run: the table's default
+        return SpecimenTest(params["description"], overrides={k: v for k, v in ran.items()
+                                                              if k in given and given[k] != v})
     known = {f.name for f in dataclasses.fields(CubeTest)}
     cube = {k: v for k, v in params.items() if k in known}
     if not cube:

@@ -38,6 +38,9 @@ from .shapes import AXES, Nodes, SpecimenError, Where, check_keys, module_mask, 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
 # Cube-only parameters: a specimen says the same with its groups.
 _CUBE_ONLY = {"size", "L0", "load", "top_lateral", "bottom_lateral"}
+# A specimen's own defaults over the table's: its rate from its own fundamental
+# period (pkg/ldem/ParameterTable.hpp, specimenOwnDefaults, says why).
+SPECIMEN_DEFAULTS = _core.specimen_own_defaults()
 _SECTIONS = {"title", "shape", "groups", "measure", "material", "loading", "run"}
 _GROUP_KEYS = {"face", "plane", "line", "box", "point", "union", "fix", "drive", "linear"}
 _MEASURE_KEYS = {"support", "loaded", "area", "gauge_length", "ligament", "probes", "control", "stress_label",
@@ -216,8 +219,10 @@ class Build:
 
 def _parameters(data: dict, where: Where, overrides: dict) -> dict:
     """Every CubeTest parameter of the material, loading and run groups: the
-    file's values over the defaults, then the overrides (--set)."""
-    out = dict(TABLE_DEFAULTS)
+    file's values over the defaults (SPECIMEN_DEFAULTS over the table's), then
+    the overrides (--set). A strain_rate given without rate_periods is the rate
+    driven: the file's over the default rule (c), --set's over the file's."""
+    out = {**TABLE_DEFAULTS, **SPECIMEN_DEFAULTS}
     given = [(section, k, v, False) for section in ("material", "loading", "run")
              for k, v in (data.get(section) or {}).items()]
     given += [(_PARAMS[k]["group"] if k in _PARAMS else "set", k, v, True) for k, v in overrides.items()]
@@ -234,6 +239,10 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
             expected = "one of " + ", ".join(_PARAMS[k]["choices"]) if kind == "choice" else kind
             raise blame(section, k, f"must be {expected} (got {v!r})", overridden)
         out[k] = float(v) if kind == "float" else v
+    for layer in (False, True):  # the file, then --set
+        keys = {k for _, k, _, overridden in given if overridden == layer}
+        if "strain_rate" in keys and "rate_periods" not in keys:
+            out["rate_periods"] = 0.0
     p = _core.CubeTestParams()
     for k, v in out.items():
         p[k] = v

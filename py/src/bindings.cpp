@@ -176,6 +176,14 @@ PYBIND11_MODULE(_core, m) {
             return d;
         },
         "the cube's own defaults over the table's (ldem.CubeTest, ldem cube): its paced drive");
+    m.def(
+        "specimen_own_defaults",
+        [] {
+            py::dict d;
+            for (const auto& [name, value] : specimenOwnDefaults()) d[py::str(name)] = value;
+            return d;
+        },
+        "a specimen file's own defaults over the table's (ldem run): its rate from its own period, rule (c)");
     // A group's struct: Material(E=..., nu=...) with its parameters as keyword
     // arguments, each an attribute with its help, validate(), and a repr.
     auto groupStruct = [&](auto cls, const std::string& group) {

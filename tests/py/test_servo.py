@@ -19,7 +19,7 @@ RATE = 1e-3  # [m/s]: the peak (CMOD 44 um) after some 40 ms, 11 ramp times
 def servo_beam(threads=1, opening_rate=RATE) -> SpecimenTest:
     data = SpecimenTest.from_file(BEAM).description
     return SpecimenTest.of(**dict(data, measure=dict(data["measure"], control="cmod"),
-                                  loading={"opening_rate": opening_rate},
+                                  loading=dict(data["loading"], opening_rate=opening_rate),
                                   run={"threads": threads, "stop_at": "load_loss", "final_strain": 0.01}))
 
 

@@ -216,6 +216,23 @@ def test_keyword_arguments_build_what_the_file_builds():
         SpecimenTest.of(colour=1, **data)
 
 
+def test_a_file_without_a_rate_is_driven_from_its_own_period():
+    """Rule (c) is a file's default rate (specimenOwnDefaults, kSpecimenRatePeriods in
+    dynamics/QuasiStatic.hpp): eps_p in 12 of the specimen's own periods. A strain_rate
+    the file gives is the rate driven; --set's is over the file's."""
+    d = example("dogbone")
+    assert "strain_rate" not in d.get("loading", {}) and "rate_periods" not in d.get("loading", {})
+    assert SpecimenTest(d).build.params["rate_periods"] == _core.specimen_own_defaults()["rate_periods"] == 12
+    given = SpecimenTest(dict(d, loading={"strain_rate": 0.05})).build.params
+    assert given["rate_periods"] == 0 and given["strain_rate"] == 0.05
+    assert SpecimenTest(dict(d, loading={"strain_rate": 0.05, "rate_periods": 6})).build.params["rate_periods"] == 6
+    over = SpecimenTest(dict(d, loading={"rate_periods": 6}), overrides={"strain_rate": 0.05}).build.params
+    assert over["rate_periods"] == 0 and over["strain_rate"] == 0.05
+    s = SpecimenTest(d, overrides={"final_strain": 5e-5, "threads": 1}).run().summary
+    assert s["quasi_static"]["periods_to_eps_p"] == pytest.approx(12, rel=1e-12)
+    assert s["quasi_static"]["strain_rate"] == pytest.approx(s["parameters"]["parameters"]["eps_p"] * s["omega1_rad_s"] / (24 * np.pi), rel=1e-12)
+
+
 def test_the_line_named_is_the_key_s_line(tmp_path):
     path = _file(tmp_path, lambda s: s.replace('face = "z+"', 'face = "top"'))
     with pytest.raises(SpecimenError) as e:
@@ -291,9 +308,9 @@ def test_ldem_run_restarts_bit_for_bit(cli, tmp_path, servo):
     stopped; under CMOD control too (the servo's state is in checkpoint.npz)."""
     path = os.path.join(ROOT, "tests", "data", "beam_small.toml")
     if servo:
-        text = open(path).read().replace("[measure]", '[loading]\nopening_rate = 0.02\n\n[measure]')
+        text = open(path).read().replace("[loading]\n", "[loading]\nopening_rate = 0.02\n")
         path = str(tmp_path / "servo.toml")
-        open(path, "w").write(text + 'control = "cmod"\n')
+        open(path, "w").write(text.replace("[measure]\n", '[measure]\ncontrol = "cmod"\n'))
     common = ["--no-progress", "--no-plots", "--set", "threads=1", "--set", "final_strain=6e-4", "--set",
               "strain_rate=1.0"]
     r = cli("run", path, "--out", str(tmp_path / "whole"), *common)

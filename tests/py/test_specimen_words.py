@@ -96,6 +96,21 @@ def test_ldem_rerun_reruns_an_ldem_run_output(cli, tmp_path):
     assert again["parameters"]["parameters"]["seed"] == 3 and "cmod_m" in (out / "rerun" / "curve.csv").read_text()
 
 
+def test_a_rerun_drives_at_the_rate_its_run_had():
+    """A run of a file without a rate, from before a file's own default (rule (c) at 12 periods),
+    ran at the table's strain_rate: ldem rerun asks for that rate again, whether the run's
+    parameters say rate_periods 0 or, older still, nothing of it (the table's default then)."""
+    from ldem.cube import TABLE_DEFAULTS
+    from ldem.rerun import rerun_test_of
+    with open(os.path.join(ROOT, "examples", "dogbone.toml"), "rb") as f:
+        d = tomllib.load(f)
+    now = SpecimenTest(d).build.params
+    assert TABLE_DEFAULTS["rate_periods"] == 0 and now["rate_periods"] == 12
+    for params in (dict(now, rate_periods=0.0), {k: v for k, v in now.items() if k != "rate_periods"}):
+        test = rerun_test_of({"parameters": {"description": d, "parameters": params}}, "summary.json")
+        assert test.build.params["rate_periods"] == 0 and test.build.params["strain_rate"] == 0.02
+
+
 @pytest.mark.parametrize("pair,message", [("eps_p=1e9", "--set eps_p: eps_p must be in (0, 0.01] (got 1e+09)"),
                                           ("zeta=nan", "--set zeta: zeta must be in [0, 10] (got nan)")])
 def test_a_bad_set_names_the_option_not_a_line_of_the_file(cli, tmp_path, pair, message):
