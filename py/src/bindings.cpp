@@ -168,22 +168,15 @@ PYBIND11_MODULE(_core, m) {
             return rows;
         },
         "every parameter of a cube test: group, name, unit, help, kind (float/int/choice), default, domain, choices");
-    m.def(
-        "cube_own_defaults",
-        [] {
-            py::dict d;
-            for (const auto& [name, value] : cubeOwnDefaults()) d[py::str(name)] = value;
-            return d;
-        },
-        "the cube's own defaults over the table's (ldem.CubeTest, ldem cube): its paced drive");
-    m.def(
-        "specimen_own_defaults",
-        [] {
-            py::dict d;
-            for (const auto& [name, value] : specimenOwnDefaults()) d[py::str(name)] = value;
-            return d;
-        },
-        "a specimen file's own defaults over the table's (ldem run): its rate from its own period, rule (c)");
+    auto byName = [](const std::vector<std::pair<std::string, ParamValue>>& own) {
+        py::dict d;
+        for (const auto& [name, value] : own) d[py::str(name)] = value;
+        return d;
+    };
+    m.def("cube_own_defaults", [=] { return byName(cubeOwnDefaults()); },
+          "the cube's own defaults over the table's (ldem.CubeTest, ldem cube): its paced drive");
+    m.def("specimen_own_defaults", [=] { return byName(specimenOwnDefaults()); },
+          "a specimen file's own defaults over the table's (ldem run): its rate from its own period, rule (c)");
     // A group's struct: Material(E=..., nu=...) with its parameters as keyword
     // arguments, each an attribute with its help, validate(), and a repr.
     auto groupStruct = [&](auto cls, const std::string& group) {
