@@ -101,8 +101,8 @@ def test_a_blind_prediction_runs_as_a_study_command(tmp_path, cli):
     root = tmp_path / "repo"
     (root / "examples").mkdir(parents=True)
     text = open(os.path.join(ROOT, validation.SPECIMENS["l_panel"].file)).read()
-    assert "L0 = 0.01\n" in text and "rate_periods = 3 " in text and "final_strain = 0.002 " in text
-    text = text.replace("L0 = 0.01\n", "L0 = 0.025\n").replace("rate_periods = 3 ", "strain_rate = 1.0 ")
+    assert "L0 = 0.01\n" in text and "rate_periods = 12 " in text and "final_strain = 0.002 " in text
+    text = text.replace("L0 = 0.01\n", "L0 = 0.025\n").replace("rate_periods = 12 ", "strain_rate = 1.0 ")
     (root / "examples" / "l_panel.toml").write_text(text.replace("final_strain = 0.002 ", "final_strain = 5e-4 "))
     out = tmp_path / "l_panel"
     out.mkdir()
