@@ -14,7 +14,7 @@ from matplotlib.collections import LineCollection  # noqa: E402
 from matplotlib.lines import Line2D  # noqa: E402
 
 from ._core import BROKEN, DAMAGED, UNDAMAGED  # noqa: E402  (the law's damage states)
-from .cube import STRAIN_LABEL, STRESS_LABEL, labels as test_labels  # noqa: E402, F401  (the report's axes too)
+from .cube import STRAIN_LABEL, STRESS_LABEL, label_words, labels as test_labels  # noqa: E402, F401  (report axes too)
 
 STYLE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "ldem.mplstyle")
 plt.style.use(STYLE)
@@ -107,8 +107,9 @@ def _peak_panel(ax, c, s, strain_label, stress_label) -> None:
     ax.plot(c["mean_strain"], c["stress_MPa"], label="support (reaction)")
     ax.plot(c["mean_strain"], c["stress_top_MPa"], lw=0.8, ls="--", alpha=0.7, label="loaded group")
     if "peak_stress_MPa" in s:
+        unit = label_words(stress_label)[1] or "MPa"  # the specimen's own (an L-panel's load: MN)
         ax.plot(s["strain_at_peak"], s["peak_stress_MPa"], "ko", ms=5,
-                label=f"peak {s['peak_stress_MPa']:.3f} MPa at {s['strain_at_peak']:.3g}")
+                label=f"peak {s['peak_stress_MPa']:#.4g} {unit} at {s['strain_at_peak']:.3g}")
     event_lines(ax, s)
     ax.set(xlabel=strain_label, ylabel=stress_label)
 

@@ -76,6 +76,18 @@ def test_each_vertical_line_says_what_it_marks():
     assert not any("10%" in t for ax in (whole, zoom) for t in [ax.get_title()] + [x.get_label() for x in ax.get_lines()])
 
 
+def test_the_peak_is_labelled_in_the_specimen_s_own_unit():
+    """An L-panel's load is in MN (its stress_label "load F [MN]"): the peak's legend says MN, with
+    four significant digits (0.007728, not 0.008 MPa); a cube's stays in MPa."""
+    curve, summary = _separation_run()
+    summary["peak_stress_MPa"] = 0.0077283
+    whole = plots.curve_plot(curve, summary, "panel", labels=("load-point displacement [-]", "load F [MN]")).axes[0]
+    assert "peak 0.007728 MN at 0.000101" in [t.get_text() for t in whole.get_legend().get_texts()]
+    summary["peak_stress_MPa"] = 2.3461
+    whole = plots.curve_plot(curve, summary, "cube").axes[0]
+    assert "peak 2.346 MPa at 0.000101" in [t.get_text() for t in whole.get_legend().get_texts()]
+
+
 def test_the_energy_figure_shows_each_energy_over_the_zoom():
     curve, summary = _separation_run()
     fig = plots.energy_plot(curve, summary)
