@@ -49,6 +49,16 @@ def test_a_study_of_specimens_runs_resumes_and_never_recomputes(tmp_path):
     assert again[1]["peak_stress_MPa"] == first[1]["peak_stress_MPa"]
 
 
+def test_a_study_says_each_peak_in_its_specimen_s_unit(tmp_path):
+    """The line a finished case logs gives the peak in the unit of the specimen's stress_label
+    (the L-panel's study said "peak 0.0071 MPa" of a load of 7.1 kN, in MN)."""
+    d = tiny_beam(1).description
+    d["measure"]["stress_label"] = "F/(bD) [N/mm2]"
+    ran = []
+    [s] = study.run_cases([ldem.SpecimenTest(d)], str(tmp_path / "u"), log=ran.append)
+    assert f": peak {s['peak_stress_MPa']:.5g} N/mm2 at {s['strain_at_peak']:.4e}, " in ran[-1], ran
+
+
 def test_another_specimen_is_another_case():
     assert study.case_name(tiny_beam(1)) != study.case_name(tiny_beam(1, notch=0.2))
     assert study.case_name(tiny_beam(1)) == study.case_name(tiny_beam(1))

@@ -9,6 +9,7 @@ import socket
 from typing import Callable, List, Optional, Sequence
 
 from .. import io
+from ..cube import label_words
 from ..progress import CaseProgress
 from ..signals import Terminated
 from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
@@ -93,7 +94,9 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
 
     def finished(i, summary):
         bar.step()
-        log(f"  {case_name(tests[i])}: peak {summary['peak_stress_MPa']:.4f} MPa at {summary['strain_at_peak']:.4e}, "
+        unit = label_words((summary.get("labels") or {}).get("stress", ""))[1] or "MPa"  # an L-panel's: MN
+        peak, at = summary["peak_stress_MPa"], summary["strain_at_peak"]
+        log(f"  {case_name(tests[i])}: peak {peak:.5g} {unit} at {at:.4e}, "
             + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("U_ratio") is not None  # None: no U_min
                else f"U_num {summary['U_num_J']:.4g} J" if summary.get("separated")
                else f"stopped ({summary.get('stop_reason', 'unknown')}) before separation")
