@@ -41,7 +41,7 @@ constexpr double kRatePeriods = 3.0;
 // loss by -59 % (an early loss), the L-panel by +1.9 to +2.7 %; N = 12 moved the
 // dog-bone by +0.06 % (+0.18 %), the Brazilian disc by -0.04 % (+0.18 %), the
 // compression cube by +0.27 % (its collapse's energy by +30 %), the L-panel by
-// -0.56 % (+3.3 %, its bursts): results/dynamics/criteria.md.
+// -0.56 % (its energy to 1 mm +3.0 %: its bursts): results/dynamics/criteria.md.
 constexpr double kSpecimenRatePeriods = 12.0;
 
 // N, the fundamental periods the drive takes to strain eps_p.
