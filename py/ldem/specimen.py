@@ -239,9 +239,11 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
             expected = "one of " + ", ".join(_PARAMS[k]["choices"]) if kind == "choice" else kind
             raise blame(section, k, f"must be {expected} (got {v!r})", overridden)
         out[k] = float(v) if kind == "float" else v
-    for layer in (False, True):  # the file, then --set
-        keys = {k for _, k, _, overridden in given if overridden == layer}
-        if "strain_rate" in keys and "rate_periods" not in keys:
+    for layer in (False, True):  # the file, then --set: the later one's choice of rate stands
+        said = {k: v for _, k, v, overridden in given if overridden == layer}
+        if "rate_periods" in said:
+            out["rate_periods"] = float(said["rate_periods"])
+        elif "strain_rate" in said:
             out["rate_periods"] = 0.0
     p = _core.CubeTestParams()
     for k, v in out.items():

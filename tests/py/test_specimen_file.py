@@ -228,6 +228,8 @@ def test_a_file_without_a_rate_is_driven_from_its_own_period():
     assert SpecimenTest(dict(d, loading={"strain_rate": 0.05, "rate_periods": 6})).build.params["rate_periods"] == 6
     over = SpecimenTest(dict(d, loading={"rate_periods": 6}), overrides={"strain_rate": 0.05}).build.params
     assert over["rate_periods"] == 0 and over["strain_rate"] == 0.05
+    back = SpecimenTest(dict(d, loading={"strain_rate": 0.05}), overrides={"rate_periods": 3}).build.params
+    assert back["rate_periods"] == 3  # --set's rule (c) over the file's strain_rate (it was lost)
     s = SpecimenTest(d, overrides={"final_strain": 5e-5, "threads": 1}).run().summary
     assert s["quasi_static"]["periods_to_eps_p"] == pytest.approx(12, rel=1e-12)
     assert s["quasi_static"]["strain_rate"] == pytest.approx(s["parameters"]["parameters"]["eps_p"] * s["omega1_rad_s"] / (24 * np.pi), rel=1e-12)
