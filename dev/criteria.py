@@ -11,8 +11,11 @@ curve.csv and summary.json (the load-cell records, as written):
 
     /usr/bin/python3 dev/criteria.py RUN [QUARTER_RATE_RUN] [--label NAME] [--until STRAIN]
 
-Prints one table row (markdown). `--until` ends (a)'s window and (b)'s
-fracture energy at that strain (default: the shorter of the two curves).
+Prints one table row (markdown). (a) is taken over each run's own record
+after its peak; (b)'s energy, where it is not at the load loss, at the end of
+the shorter curve. `--until` ends both at that strain. `--fall` adds (a) split
+at the load's fall from 90 % to 10 % of the peak: over the records whose mean's
+window ends before the fall, and over those whose window starts after it.
 """
 import argparse, csv, json, math
 import numpy as np
@@ -48,6 +51,21 @@ def ringing(r, until):
     return math.sqrt(np.mean(d ** 2)) / r["F"][ip] if len(d) else float("nan")
 
 
+def ringing_around_fall(r):
+    """(a) before and after the fall from 90 % to 10 % of the peak (NaN where there is none)."""
+    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
+    t, F = r["t"], r["F"]
+    ip = int(np.argmax(F))
+    below = lambda x: ip + int(np.argmax(F[ip:] < x * F[ip])) if np.any(F[ip:] < x * F[ip]) else None
+    i90, i10 = below(0.9), below(0.1)
+    d = F - running_mean(t, F, T1)
+    ok = ~np.isnan(d) & (np.arange(len(F)) >= ip)
+    rms = lambda w: math.sqrt(np.mean(d[w] ** 2)) / F[ip] if np.any(w) else float("nan")
+    if i90 is None or i10 is None:
+        return rms(ok), float("nan")
+    return rms(ok & (t + T1 / 2 < t[i90])), rms(ok & (t - T1 / 2 > t[i10]))
+
+
 def periods_after_start(r):
     """(c): (t_peak - t_ramp) / T1."""
     T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
@@ -65,18 +83,21 @@ def main():
     ap.add_argument("quarter", nargs="?")
     ap.add_argument("--label", default="")
     ap.add_argument("--until", type=float, default=None)
+    ap.add_argument("--fall", action="store_true")
     a = ap.parse_args()
     r = load(a.run)
     q = load(a.quarter) if a.quarter else None
     until = a.until or min(r["e"][-1], q["e"][-1] if q else r["e"][-1])
     peak = r["F"].max()
-    cells = [a.label or a.run, f"{r['s']['peak_stress_MPa']:.5g}", f"{ringing(r, until) * 100:.2f} %",
+    cells = [a.label or a.run, f"{r['s']['peak_stress_MPa']:.5g}", f"{ringing(r, a.until) * 100:.2f} %",
              f"{periods_after_start(r):.1f}"]
+    if a.fall:
+        cells += [f"{x * 100:.2f} %" for x in ringing_around_fall(r)]
     if q:
         at_loss = bool(r["s"].get("load_loss") and q["s"].get("load_loss"))  # else both at the same strain
         cells += [f"{(peak / q['F'].max() - 1) * 100:+.2f} %",
                   f"{(energy_at(r, until, at_loss) / energy_at(q, until, at_loss) - 1) * 100:+.2f} %",
-                  f"{ringing(q, until) * 100:.2f} %", f"{periods_after_start(q):.1f}"]
+                  f"{ringing(q, a.until) * 100:.2f} %", f"{periods_after_start(q):.1f}"]
     cells += [f"{r['s']['steps']}", f"{r['s']['wall_s']:.0f} s"]
     print("| " + " | ".join(cells) + " |")
 
