@@ -40,30 +40,37 @@ def running_mean(t, F, T):
     return m
 
 
-def ringing(r, until):
-    """(a): rms(F - mean over T1) after the peak, over the peak."""
+def residual(r):
+    """T1, the peak's record, and F - its running mean over T1 with the records before the peak masked."""
     T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
     ip = int(np.argmax(r["F"]))
-    end = np.searchsorted(r["e"], until) if until else len(r["F"])
-    m = running_mean(r["t"], r["F"], T1)
-    d = (r["F"] - m)[ip:end]
-    d = d[~np.isnan(d)]
-    return math.sqrt(np.mean(d ** 2)) / r["F"][ip] if len(d) else float("nan")
+    d = r["F"] - running_mean(r["t"], r["F"], T1)
+    d[:ip] = np.nan
+    return T1, ip, d
+
+
+def rms_over_peak(r, d, window):
+    """rms of d over the window's records where it is defined, over the peak (NaN: none)."""
+    w = window & ~np.isnan(d)
+    return math.sqrt(np.mean(d[w] ** 2)) / r["F"].max() if np.any(w) else float("nan")
+
+
+def ringing(r, until):
+    """(a): rms(F - mean over T1) after the peak, over the peak, to strain `until` (None: the run's end)."""
+    _, _, d = residual(r)
+    return rms_over_peak(r, d, r["e"] < until if until else np.full(len(d), True))
 
 
 def ringing_around_fall(r):
-    """(a) before and after the fall from 90 % to 10 % of the peak (NaN where there is none)."""
-    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
+    """(a) before and after the fall from 90 % to 10 % of the peak: over the records whose mean's
+    window ends before it, and those whose window starts after it (NaN where there is none)."""
+    T1, ip, d = residual(r)
     t, F = r["t"], r["F"]
-    ip = int(np.argmax(F))
-    below = lambda x: ip + int(np.argmax(F[ip:] < x * F[ip])) if np.any(F[ip:] < x * F[ip]) else None
-    i90, i10 = below(0.9), below(0.1)
-    d = F - running_mean(t, F, T1)
-    ok = ~np.isnan(d) & (np.arange(len(F)) >= ip)
-    rms = lambda w: math.sqrt(np.mean(d[w] ** 2)) / F[ip] if np.any(w) else float("nan")
-    if i90 is None or i10 is None:
-        return rms(ok), float("nan")
-    return rms(ok & (t + T1 / 2 < t[i90])), rms(ok & (t - T1 / 2 > t[i10]))
+    after = np.arange(len(F)) >= ip
+    i90, i10 = (np.flatnonzero(after & (F < x * F[ip]))[:1] for x in (0.9, 0.1))
+    if not (len(i90) and len(i10)):
+        return rms_over_peak(r, d, after), float("nan")
+    return rms_over_peak(r, d, t + T1 / 2 < t[i90[0]]), rms_over_peak(r, d, t - T1 / 2 > t[i10[0]])
 
 
 def periods_after_start(r):
