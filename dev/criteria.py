@@ -58,7 +58,7 @@ def rms_over_peak(r, d, window):
 def ringing(r, until):
     """(a): rms(F - mean over T1) after the peak, over the peak, to strain `until` (None: the run's end)."""
     _, _, d = residual(r)
-    return rms_over_peak(r, d, r["e"] < until if until else np.full(len(d), True))
+    return rms_over_peak(r, d, r["e"] < until if until else True)
 
 
 def ringing_around_fall(r):
