@@ -41,6 +41,9 @@
       "every bar is; at most the G_f that makes eps_r of a normal bar 1 (6.4e4 N/m at the defaults): the "      \
       "geometry is of small strains (pkg/ldem/Relations.hpp)")                                                 \
     X(double, GfCV, "Gf_cv", 1.0, "", Domain::closed(0, 10), "coefficient of variation of G_f (1 = 100%)")     \
+    X(double, GfMin, "Gf_min", 0.0, "N/m", Domain::atLeast(0),                                                 \
+      "lower bound of G_f, the Weibull's location (below Gf_mean): its shape and scale keep E[G_f] and CV(G_f); "\
+      "0: the two-parameter Weibull (CV 1 is then an exponential)")                                            \
     X(double, corrLength, "corr_length", 0.0, "m", Domain::atLeast(0),                                         \
       "correlation length of G_f (0: one draw per bar)")                                                      \
     X(bool, GfPerModule, "Gf_draw", false, "", Domain::choices({"bar", "module"}),                             \
@@ -138,6 +141,9 @@
     X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                 \
       "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
       "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")\
+    X(double, dampingOmega, "damping_omega", 0.0, "rad/s", Domain::atLeast(0),                              \
+      "the circular frequency zeta is stated on: D_f = 2 zeta damping_omega (0: omega_1, the fundamental "    \
+      "mode; another mode's, or one D_f for specimens of every size)")                                       \
     X(bool, tailDampingRelative, "tail_damping", false, "", Domain::choices({"absolute", "relative"}),        \
       "the mass-proportional damping from the load loss on: on each node's absolute velocity, or relative "  \
       "to its mean velocity (low-passed over damping_filter_periods): a part that moves with the drive is "  \

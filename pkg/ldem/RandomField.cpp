@@ -35,24 +35,28 @@ double hashedUniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
 }
 
 double Weibull::quantile(double u) const {
-    if (std::isinf(shape)) return scale;
-    return scale * std::pow(-std::log1p(-u), 1 / shape);
+    if (std::isinf(shape)) return location + scale;
+    return location + scale * std::pow(-std::log1p(-u), 1 / shape);
 }
-double Weibull::mean() const { return std::isinf(shape) ? scale : scale * std::tgamma(1 + 1 / shape); }
-double Weibull::cv() const { return std::isinf(shape) ? 0.0 : std::sqrt(weibullCV2(shape)); }
+double Weibull::mean() const { return location + (std::isinf(shape) ? scale : scale * std::tgamma(1 + 1 / shape)); }
+double Weibull::cv() const {
+    return std::isinf(shape) ? 0.0 : std::sqrt(weibullCV2(shape)) * (mean() - location) / mean();
+}
 
-Weibull weibullFromMeanCV(double mean, double cv) {
+Weibull weibullFromMeanCV(double mean, double cv, double location) {
     if (!(mean > 0)) throw std::invalid_argument("Weibull mean must be positive");
     if (!(cv >= 0)) throw std::invalid_argument("Weibull CV must be >= 0");
-    if (cv == 0) return {std::numeric_limits<double>::infinity(), mean};
+    if (cv == 0) return {std::numeric_limits<double>::infinity(), mean, 0.0};
+    if (!(location >= 0 && location < mean)) throw std::invalid_argument("Weibull location must be in [0, mean)");
+    const double cvW = cv * mean / (mean - location);
     // CV decreases monotonically with k; solve in log k on a bracket that spans
     // CV from about 1e-6 to far above 10.
-    const auto f = [cv](double logk) { return weibullCV2(std::exp(logk)) - cv * cv; };
+    const auto f = [cvW](double logk) { return weibullCV2(std::exp(logk)) - cvW * cvW; };
     boost::uintmax_t iters = 200;
     const auto r = boost::math::tools::toms748_solve(f, std::log(0.05), std::log(2e6),
                                                      boost::math::tools::eps_tolerance<double>(52), iters);
     const double k = std::exp(0.5 * (r.first + r.second));
-    return {k, mean / std::tgamma(1 + 1 / k)};
+    return {k, (mean - location) / std::tgamma(1 + 1 / k), location};
 }
 
 namespace {
@@ -81,7 +85,7 @@ std::array<double, 3> samplePoint(const Lattice& lat, bool perModule, std::int32
 
 std::vector<double> fractureEnergyField(const Lattice& lat, const Material& m, std::uint64_t seed,
                                         int fourierModes) {
-    const Weibull w = weibullFromMeanCV(m.GfMean, m.GfCV);
+    const Weibull w = weibullFromMeanCV(m.GfMean, m.GfCV, m.GfMin);
     const std::int64_t nb = lat.numBars();
     std::vector<double> gf(nb);
     if (m.corrLength <= 0) {

@@ -1,6 +1,7 @@
 // Random fracture energy G_f (LDEM_SPEC section 4): Weibull marginal (minimum,
-// type III, location 0) with a given mean and CV, either one independent draw
-// per bar or a Gaussian field with correlation length l_c mapped to that marginal.
+// type III) with a given mean and CV, and a location (lower bound, Gf_min) that
+// is 0 by default, either one independent draw per bar or a Gaussian field with
+// correlation length l_c mapped to that marginal.
 // Every draw is a pure function of (seed, bar end nodes, bar position), so the
 // specimen does not depend on the thread count or on the order bars are stored in.
 #pragma once
@@ -12,16 +13,20 @@
 namespace ldem {
 
 struct Weibull {
-    double shape;  // k (infinite for CV = 0: deterministic)
-    double scale;  // lambda
-    double quantile(double u) const;  // inverse CDF: lambda (-ln(1-u))^(1/k)
+    double shape;          // k (infinite for CV = 0: deterministic)
+    double scale;          // lambda
+    double location = 0;   // a, the lower bound
+    double quantile(double u) const;  // inverse CDF: a + lambda (-ln(1-u))^(1/k)
     double mean() const;
     double cv() const;
 };
 
-// Shape from CV^2 = Gamma(1+2/k)/Gamma(1+1/k)^2 - 1 (solved numerically),
-// scale from mean = lambda Gamma(1+1/k). CV = 1 gives k = 1 (exponential).
-Weibull weibullFromMeanCV(double mean, double cv);
+// With location a: G = a + W, W a two-parameter Weibull of mean m - a and standard
+// deviation CV m, so that G keeps the mean m and the CV. W's shape from
+// CV_W^2 = Gamma(1+2/k)/Gamma(1+1/k)^2 - 1, CV_W = CV m / (m - a) (solved
+// numerically), its scale from m - a = lambda Gamma(1+1/k). CV = 1, a = 0 gives
+// k = 1 (exponential); a > 0 needs k < 1 for the same CV.
+Weibull weibullFromMeanCV(double mean, double cv, double location = 0);
 
 // Uniform (0,1) number that depends only on (seed, a, b): splitmix64 hashing.
 double hashedUniform(std::uint64_t seed, std::uint64_t a, std::uint64_t b);

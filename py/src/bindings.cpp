@@ -373,10 +373,11 @@ PYBIND11_MODULE(_core, m) {
     });
     m.def("nayfeh_delta", &nayfehDelta);
     m.def("nayfeh_phi", &nayfehPhi);
-    m.def("weibull_from_mean_cv", [](double mean, double cv) {
-        const Weibull w = weibullFromMeanCV(mean, cv);
+    m.def("weibull_from_mean_cv", [](double mean, double cv, double location) {
+        const Weibull w = weibullFromMeanCV(mean, cv, location);
         return py::make_tuple(w.shape, w.scale);
-    });
+    }, py::arg("mean"), py::arg("cv"), py::arg("location") = 0.0,
+          "(shape, scale) of the Weibull of this mean, CV and location (lower bound)");
     m.def("max_threads", &maxThreads);
     m.def("default_thread_count", &defaultThreadCount, py::arg("bars"), py::arg("free_cores"), py::arg("processes") = 1,
           "the default thread count's rule (threads = 0) for a lattice of `bars` bars on `free_cores` free cores");

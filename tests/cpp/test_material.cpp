@@ -66,6 +66,8 @@ TEST(Material, ValidateRejectsNonsense) {
     bad([](Material& x) { x.GfMean = 0; });
     bad([](Material& x) { x.GfCV = -0.1; });
     bad([](Material& x) { x.corrLength = -1; });
+    bad([](Material& x) { x.GfMin = -1; });
+    bad([](Material& x) { x.GfMin = x.GfMean; });  // no variable part left to keep the CV
     bad([](Material& x) { x.epsP = 0; });
     bad([](Material& x) { x.ca = 0; });
 }

@@ -74,6 +74,44 @@ TEST(Weibull, MeanAndCVAreReproduced) {
     EXPECT_THROW(weibullFromMeanCV(1, -1), std::invalid_argument);
 }
 
+// A lower bound a (Gf_min): G = a + W keeps the mean and the CV, W's moments
+// from its own shape and scale; no draw below a; a >= mean refused.
+TEST(Weibull, LocationKeepsMeanAndCVAboveItsBound) {
+    for (double a : {4.0, 20.0, 50.0}) {
+        const Weibull w = weibullFromMeanCV(100.0, 1.0, a);
+        EXPECT_EQ(w.location, a);
+        EXPECT_LT(w.shape, 1.0) << a;  // the same CV over a smaller variable part
+        EXPECT_NEAR(w.mean(), 100.0, 1e-9 * 100) << a;
+        EXPECT_NEAR(w.cv(), 1.0, 1e-9) << a;
+        const Weibull W{w.shape, w.scale, 0.0};
+        const double m1 = rawMoment(W, 1), m2 = rawMoment(W, 2);
+        EXPECT_NEAR(a + m1, 100.0, 1e-8 * 100) << a;
+        EXPECT_NEAR(std::sqrt(m2 - m1 * m1) / 100.0, 1.0, 1e-8) << a;
+        EXPECT_GE(w.quantile(1e-15), a);
+        EXPECT_NEAR(w.quantile(1e-15), a, 1e-3 * a);
+    }
+    EXPECT_THROW(weibullFromMeanCV(100, 1, 100), std::invalid_argument);
+    EXPECT_THROW(weibullFromMeanCV(100, 1, -1), std::invalid_argument);
+}
+
+// The field of a material with Gf_min: every bar at or above it, the mean kept
+// (SE 100/sqrt n), and the bars below the brittle threshold (4 N/m) gone.
+TEST(FractureEnergyField, LowerBoundHoldsInEveryBar) {
+    Material m;
+    m.GfMin = 20.0;
+    const Lattice lat = buildCubicLattice(8, 8, 8, 0.02, m);
+    const auto g = fractureEnergyField(lat, m, 3);
+    double s = 0;
+    for (double x : g) {
+        ASSERT_GE(x, 20.0);
+        s += x;
+    }
+    EXPECT_NEAR(s / g.size(), 100.0, 4 * 100 / std::sqrt(double(g.size())));
+    Material zero;  // location 0: 3-4 % of the bars below 4 N/m
+    const auto g0 = fractureEnergyField(lat, zero, 3);
+    EXPECT_GT(std::count_if(g0.begin(), g0.end(), [](double x) { return x < 4.0; }), 100);
+}
+
 // 200000 draws. Standard errors from the Weibull's own moments:
 //   SE(mean) = sigma / sqrt(n);   Var(s^2) ~ (mu4 - sigma^4) / n, SE(s) ~ SE(s^2) / (2 sigma).
 // The CV estimate s/xbar is checked against 4 x (relative SE of s + relative SE

@@ -1,6 +1,7 @@
 // Mass-proportional damping (LDEM_SPEC section 5): the force -D_f m v on
 // every node, D_f = 2 zeta omega_1, the damping ratio zeta on the fundamental
-// mode (every mode i has 2 zeta_i omega_i = D_f). It enters the node update of
+// mode (every mode i has 2 zeta_i omega_i = D_f); damping_omega > 0 states zeta
+// on that frequency instead, D_f = 2 zeta damping_omega. It enters the node update of
 // central differences (Integrator.hpp) through the coefficients a and b of
 // CentralDifference; its work is the integrator's. It adds no bar force.
 // Parameters: LDEM_MASS_DAMPING_PARAMETERS (zeta, tail_damping, damping_filter_periods).
@@ -55,7 +56,8 @@ public:
     };
     MassDamping() = default;  // none: D_f = 0
     MassDamping(const Params& p, double omega1)
-        : Df_(massDampingCoefficient(p.zeta, omega1)), relative_(p.tailDampingRelative),
+        : Df_(massDampingCoefficient(p.zeta, p.dampingOmega > 0 ? p.dampingOmega : omega1)),
+          relative_(p.tailDampingRelative),
           tau_(p.dampingFilterPeriods * 2 * 3.14159265358979323846 / omega1) {}
     // Every damping is built from the run's parameters and its set-up (Registry.hpp: makeDampings).
     MassDamping(const RunParams& run, const DampingSetup& s)

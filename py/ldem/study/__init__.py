@@ -55,7 +55,7 @@ from .damping import run_damping  # noqa: F401
 from . import mesh, mesh_tables, refinement  # noqa: F401
 # Each study registers itself as its module is imported (size_effect, damping, mesh, refinement above):
 # this order is `ldem study`'s.
-from . import concrete, fracture_energy, beam_command, ablation, validation  # noqa: F401
+from . import concrete, fracture_energy, beam_command, ablation, validation, seed_settings  # noqa: F401
 from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
                      fit_fractal, fractal_fits, mean_cv)
 from ..curves import mean_curve, mean_curve_peak  # noqa: F401

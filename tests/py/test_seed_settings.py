@@ -1,0 +1,88 @@
+"""The settings the reference study does not report (ldem.study.seed_settings):
+each new parameter does what it says, the study runs on tiny cubes and its
+table is its runs' means, and the fit recovers a setting it was given."""
+import math
+
+import numpy as np
+import pytest
+
+import ldem
+from ldem.study import seed_settings as ss
+from ldem.study.registry import STUDIES
+
+
+def test_damping_omega_states_zeta_on_that_frequency():
+    """D_f = 2 zeta damping_omega; 0 keeps D_f = 2 zeta omega_1."""
+    own = ldem.CubeTest(size=0.04, zeta=0.02).simulation()
+    assert own.damping_coefficient == pytest.approx(2 * 0.02 * own.omega1, rel=1e-12)
+    other = ldem.CubeTest(size=0.04, zeta=0.02, damping_omega=1000.0).simulation()
+    assert other.damping_coefficient == pytest.approx(40.0, rel=1e-12)
+    assert other.omega1 == own.omega1  # the modal analysis is the specimen's, whatever zeta is stated on
+
+
+def test_a_lower_bound_of_G_f_holds_in_every_bar_and_keeps_the_mean():
+    """Gf_min 4.5 N/m, above both families' brittle thresholds (4.0 and 3.4 N/m):
+    no bar below it, none made perfectly brittle; the mean within 4 standard errors."""
+    sim = ldem.CubeTest(size=0.12, Gf_min=4.5).simulation()
+    g = np.asarray(sim.fracture_energy_field)
+    assert g.min() >= 4.5
+    assert g.mean() == pytest.approx(100.0, abs=4 * 100 / math.sqrt(g.size))
+    assert np.asarray(ldem.CubeTest(size=0.12).simulation().fracture_energy_field).min() < 4.0
+    with pytest.raises(ValueError, match="Gf_min"):
+        ldem.CubeTest(size=0.04, Gf_min=100.0).params()
+
+
+def test_the_axial_mode_is_the_rayleigh_quotient_of_the_uniform_field():
+    """omega_d = sqrt(3 E / rho) / H: at 0.96 m, 6,890 rad/s (c = 3,819 m/s)."""
+    assert ss.axial_omega(0.96) == pytest.approx(math.sqrt(3 * 3.5e10 / 2400) / 0.96, rel=1e-12)
+    assert ss.axial_omega(0.96) == pytest.approx(6890, rel=1e-3)
+
+
+def test_the_registry_lists_the_study_and_every_variant_is_a_valid_cube():
+    assert "seed-settings" in STUDIES
+    pairs, tests = ss.plan([s for s in ss.SETTINGS if s != "base"], [0.12, 0.96], [1], threads=1)
+    assert len(tests) == len(pairs)  # no two variants share their parameters
+    for t in tests:
+        t.params()
+
+
+def test_the_constant_drive_reaches_its_rate_by_an_eighth_of_eps_p():
+    """Its smooth start lasts eps_p / (4 rate): the mean strain at its end, rate x ramp / 2, is eps_p / 8."""
+    for rate in (0.01, 1.0):
+        o = ss.constant_rate(rate)(0.96)
+        assert o["crack_pace"] == 1 and o["crack_secant"] == 0
+        assert rate * o["ramp_time"] / 2 == pytest.approx(6.3e-5 / 8, rel=1e-5)
+
+
+def test_the_study_runs_on_tiny_cubes_and_its_table_is_its_runs_means(tmp_path, cli):
+    out = tmp_path / "ss"
+    r = cli("study", "seed-settings", "--out", str(out), "--sizes", "0.06,0.08", "--seeds", "2",
+            "--settings", "upper face", "--threads", "1")
+    assert r.returncode == 0, r.stderr
+    runs = ldem.study.read_csv(str(out / "runs.csv"))
+    assert sorted({x["variant"] for x in runs}) == sorted(v.label for v in ss.variants(["upper face"]))
+    sens = {x["variant"]: x for x in ldem.study.read_csv(str(out / "sensitivity.csv"))}
+    for label, row in sens.items():
+        for size in (0.06, 0.08):
+            peaks = [x["peak_stress_MPa"] for x in runs if x["variant"] == label and x["size_m"] == size]
+            assert len(peaks) == 2 and row[f"peak_{size:g}"] == pytest.approx(np.mean(peaks), rel=1e-5)
+        assert row["peak_ratio"] == pytest.approx(row["peak_0.08"] / row["peak_0.06"], rel=1e-5)
+    fixed, base = sens["lateral DOFs fixed"], sens[ss.SETTINGS["base"][0].label]
+    assert fixed["peak_0.06"] != base["peak_0.06"]  # the setting reaches the run
+    assert (out / "ratio.png").is_file() and "| Table 3 |" not in (out / "sensitivity.md").read_text()
+    assert all(x["energy_balance_error"] < 1e-2 for x in runs)
+
+
+def test_the_fit_recovers_a_lower_bound_it_was_given(tmp_path):
+    """Targets made by the 0.06 and 0.08 m cubes at Gf_min 20 N/m (seeds 1-2):
+    the fit on the grid 0-40 finds 20 again, within half a grid step."""
+    truth = ss.fit_variant({"Gf_min": 20.0})
+    pairs = [(truth, ss.variant_test(truth, s, k, 1)) for s in (0.06, 0.08) for k in (1, 2)]
+    runs = ss.run_rows(pairs, {ss.case_name(t): dict(t.run().summary) for _, t in pairs})
+    target = ss._size_means(runs, truth.label)
+    fit = ss.run_fit({"Gf_min": [0.0, 10.0, 20.0, 30.0, 40.0]}, [1, 2], str(tmp_path / "fit"), target=target,
+                     threads=1)
+    assert abs(fit["best"]["Gf_min"] - 20.0) <= 5.0
+    assert fit["J"] == pytest.approx(0.0, abs=1e-6)
+    far = [p["J"] for p in fit["points"] if p["Gf_min"] in (0.0, 40.0)]
+    assert min(far) > 1e-5  # the misfit sees the parameter: the grid's ends miss the targets
