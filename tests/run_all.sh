@@ -15,5 +15,5 @@ fi
 build=${LDEM_TEST_BUILD:-build-tests}
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE=/usr/bin/python3 > /dev/null
 cmake --build "$build"
-# pytest is one CTest test: 1202 s on the 2-core machine, nearly idle (2026-12-05); the timeout twice that.
-ctest --test-dir "$build" --output-on-failure -j 2 --timeout 2400
+# Each pytest file is a CTest test with a timeout of its own (tests/CMakeLists.txt).
+ctest --test-dir "$build" --output-on-failure -j 2 --timeout 2400  # the default of the other tests (MPI)
