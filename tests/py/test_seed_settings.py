@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 import ldem
-from ldem.study import seed_settings as ss
+from ldem.study.cases import case_name
+from ldem.study.seed_settings import fit as F, tables as T, variants as V
 from ldem.study.registry import STUDIES
 
 
@@ -34,13 +35,13 @@ def test_a_lower_bound_of_G_f_holds_in_every_bar_and_keeps_the_mean():
 
 def test_the_axial_mode_is_the_rayleigh_quotient_of_the_uniform_field():
     """omega_d = sqrt(3 E / rho) / H: at 0.96 m, 6,890 rad/s (c = 3,819 m/s)."""
-    assert ss.axial_omega(0.96) == pytest.approx(math.sqrt(3 * 3.5e10 / 2400) / 0.96, rel=1e-12)
-    assert ss.axial_omega(0.96) == pytest.approx(6890, rel=1e-3)
+    assert V.axial_omega(0.96) == pytest.approx(math.sqrt(3 * 3.5e10 / 2400) / 0.96, rel=1e-12)
+    assert V.axial_omega(0.96) == pytest.approx(6890, rel=1e-3)
 
 
 def test_the_registry_lists_the_study_and_every_variant_is_a_valid_cube():
     assert "seed-settings" in STUDIES
-    pairs, tests = ss.plan([s for s in ss.SETTINGS if s != "base"], [0.12, 0.96], [1], threads=1)
+    pairs, tests = V.plan([s for s in V.SETTINGS if s != "base"], [0.12, 0.96], [1], threads=1)
     assert len(tests) == len(pairs)  # no two variants share their parameters
     for t in tests:
         t.params()
@@ -49,7 +50,7 @@ def test_the_registry_lists_the_study_and_every_variant_is_a_valid_cube():
 def test_the_constant_drive_reaches_its_rate_by_an_eighth_of_eps_p():
     """Its smooth start lasts eps_p / (4 rate): the mean strain at its end, rate x ramp / 2, is eps_p / 8."""
     for rate in (0.01, 1.0):
-        o = ss.constant_rate(rate)(0.96)
+        o = V.constant_rate(rate)(0.96)
         assert o["crack_pace"] == 1 and o["crack_secant"] == 0
         assert rate * o["ramp_time"] / 2 == pytest.approx(6.3e-5 / 8, rel=1e-5)
 
@@ -60,14 +61,14 @@ def test_the_study_runs_on_tiny_cubes_and_its_table_is_its_runs_means(tmp_path, 
             "--settings", "upper face", "--threads", "1")
     assert r.returncode == 0, r.stderr
     runs = ldem.study.read_csv(str(out / "runs.csv"))
-    assert sorted({x["variant"] for x in runs}) == sorted(v.label for v in ss.variants(["upper face"]))
+    assert sorted({x["variant"] for x in runs}) == sorted(v.label for v in V.variants(["upper face"]))
     sens = {x["variant"]: x for x in ldem.study.read_csv(str(out / "sensitivity.csv"))}
     for label, row in sens.items():
         for size in (0.06, 0.08):
             peaks = [x["peak_stress_MPa"] for x in runs if x["variant"] == label and x["size_m"] == size]
             assert len(peaks) == 2 and row[f"peak_{size:g}"] == pytest.approx(np.mean(peaks), rel=1e-5)
         assert row["peak_ratio"] == pytest.approx(row["peak_0.08"] / row["peak_0.06"], rel=1e-5)
-    fixed, base = sens["lateral DOFs fixed"], sens[ss.SETTINGS["base"][0].label]
+    fixed, base = sens["lateral DOFs fixed"], sens[V.SETTINGS["base"][0].label]
     assert fixed["peak_0.06"] != base["peak_0.06"]  # the setting reaches the run
     assert (out / "ratio.png").is_file() and "| Table 3 |" not in (out / "sensitivity.md").read_text()
     assert all(x["energy_balance_error"] < 1e-2 for x in runs)
@@ -76,11 +77,11 @@ def test_the_study_runs_on_tiny_cubes_and_its_table_is_its_runs_means(tmp_path, 
 def test_the_fit_recovers_a_lower_bound_it_was_given(tmp_path):
     """Targets made by the 0.06 and 0.08 m cubes at Gf_min 20 N/m (seeds 1-2):
     the fit on the grid 0-40 finds 20 again, within half a grid step."""
-    truth = ss.fit_variant({"Gf_min": 20.0})
-    pairs = [(truth, ss.variant_test(truth, s, k, 1)) for s in (0.06, 0.08) for k in (1, 2)]
-    runs = ss.run_rows(pairs, {ss.case_name(t): dict(t.run().summary) for _, t in pairs})
-    target = ss._size_means(runs, truth.label)
-    fit = ss.run_fit({"Gf_min": [0.0, 10.0, 20.0, 30.0, 40.0]}, [1, 2], str(tmp_path / "fit"), target=target,
+    truth = F.fit_variant({"Gf_min": 20.0})
+    pairs = [(truth, V.variant_test(truth, s, k, 1)) for s in (0.06, 0.08) for k in (1, 2)]
+    runs = T.run_rows(pairs, {case_name(t): dict(t.run().summary) for _, t in pairs})
+    target = F.size_means(runs, truth.label)
+    fit = F.run_fit({"Gf_min": [0.0, 10.0, 20.0, 30.0, 40.0]}, [1, 2], str(tmp_path / "fit"), target=target,
                      threads=1)
     assert abs(fit["best"]["Gf_min"] - 20.0) <= 5.0
     assert fit["J"] == pytest.approx(0.0, abs=1e-6)
