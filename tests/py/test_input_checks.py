@@ -75,7 +75,11 @@ BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 
 
 @pytest.mark.parametrize("args,message", [
     (["--Gf-mean", "1e-30"], BRITTLE),
-    (["--c-a", "1e-300"], "every bar is perfectly brittle"),
+    (["--c-a", "1e-300"], "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 L / (2 A_f) "
+                          "(5.5566e+299 N/m for a normal bar), with Gf_mean 100 N/m: raise Gf_mean or c_a "
+                          "(the bound goes as 1 / c_a)"),
+    (["--Gf-mean", "2", "--Gf-cv", "0", "--c-a", "1e-3"], "= 473 N/m (E, nu, eps_p, c_a and L0 = 0.02 m); "
+                                                          "raise Gf_mean or c_a (the bound goes as 1 / c_a)"),
     (["--c-a", "1.5"], "c_a must be in (0, 1] (got 1.5)"),
     (["--Gf-mean", "2", "--Gf-cv", "0"], "Gf_mean 2 N/m (the same in every bar, Gf_cv 0) makes every bar "
                                          "perfectly brittle: it is below E A eps_p^2 L / (2 A_f) = 3.41 N/m"),
@@ -108,3 +112,11 @@ def test_the_help_states_the_rules_with_true_numbers(cli):
                  "(6.4e4 N/m at the defaults)", "at most eps_p / strain_rate", "at most 1: a bar's fracture area at most a module's face",
                  "it can never reach the peak", "more than 1e-6 eps_p in one step"):
         assert rule in text, rule
+
+
+def test_raising_c_a_is_what_lowers_the_brittle_bound():
+    """The advice of the messages above: G_b = E A eps_p^2 L / (2 A_f) with A_f = c_a L0^2, so twice c_a halves it."""
+    low, high = (ldem.CubeTest(c_a=c).params().material for c in (0.1, 0.2))
+    for diagonal in (False, True):
+        assert _core.brittle_fracture_energy(high, 0.02, diagonal) == \
+            pytest.approx(_core.brittle_fracture_energy(low, 0.02, diagonal) / 2, rel=1e-12)
