@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import argparse
 import os
+import re
 import signal
 import sys
 
@@ -17,7 +18,15 @@ from .signals import Terminated, terminate_on_sigterm
 
 
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error (no usage dump) and exit code 2."""
+    """argparse with a one-line error (no usage dump) and exit code 2, and a
+    negative number in any notation taken as the value it is (--eps-p -1e-5)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern knows -1 and -.5 but not -1e-5, which it took for an option and answered
+        # "expected one argument" where the bounds should be said. Any "-" before a digit (or ".digit") is
+        # a number here: no option of ldem looks like one.
+        self._negative_number_matcher = re.compile(r"-\.?\d")
 
     def error(self, message):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")

@@ -120,3 +120,19 @@ def test_raising_c_a_is_what_lowers_the_brittle_bound():
     for diagonal in (False, True):
         assert _core.brittle_fracture_energy(high, 0.02, diagonal) == \
             pytest.approx(_core.brittle_fracture_energy(low, 0.02, diagonal) / 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("args", [["--eps-p", "-1e-5"], ["--eps-p=-1e-5"]], ids=["apart", "joined"])
+def test_a_negative_number_is_a_value_in_any_notation(cli, tmp_path, args):
+    """argparse took -1e-5 (not -1 or -.5) for an option: "expected one argument"; now it is the value, out of bounds."""
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args)) == \
+        "ldem cube: error: eps_p must be in (0, 0.01] (got -1e-05)"
+    assert not (tmp_path / "o").exists()
+
+
+def test_negative_values_reach_every_commands_check(cli, tmp_path):
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), "--zeta", "-2.5E-3")) == \
+        "ldem cube: error: zeta must be in [0, 10] (got -0.0025)"
+    line = _error(cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--threads", "-1e0",
+                      "--out", str(tmp_path / "o")))
+    assert line == "ldem run: error: argument --threads: invalid int value: '-1e0'", line  # a value, not an option
