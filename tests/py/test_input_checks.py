@@ -136,3 +136,23 @@ def test_negative_values_reach_every_commands_check(cli, tmp_path):
     line = _error(cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--threads", "-1e0",
                       "--out", str(tmp_path / "o")))
     assert line == "ldem run: error: argument --threads: invalid int value: '-1e0'", line  # a value, not an option
+
+
+@pytest.mark.parametrize("args,got", [
+    (["--seed", str(2 ** 70)], "seed is out of range: a whole number from 0 to 9223372036854775807 "
+                               "(got 1180591620717411303424)"),
+    (["--threads", "-10000000"], "threads must be >= 0 (got -10000000)"),
+    (["--record-every", "-123456789"], "record_every must be >= 0 (got -123456789 steps)"),
+])
+def test_integers_are_said_as_integers(cli, tmp_path, args, got):
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args)) == f"ldem cube: error: {got}"
+
+
+def test_integers_are_said_as_integers_from_a_file_and_python(cli, tmp_path):
+    text = open(os.path.join(ROOT, "examples", "cube_uniform.toml")).read() + f"\n[run]\nseed = {2 ** 70}\n"
+    path = tmp_path / "cube.toml"
+    path.write_text(text)
+    line = _error(cli("run", str(path), "--out", str(tmp_path / "o")))
+    assert "(got 1180591620717411303424)" in line and "e+21" not in line, line
+    with pytest.raises(ValueError, match=r"\(got 1180591620717411303424\)"):
+        ldem.CubeTest(seed=2 ** 70).params()
