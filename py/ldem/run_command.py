@@ -349,8 +349,10 @@ def add_parsers(sub) -> None:
     f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
     f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
-    f.add_argument("--threads", type=int, default=None, metavar="T",
-                   help="OpenMP threads, over the file's run.threads (0: OMP_NUM_THREADS if set, else all cores)")
+    from .cube import CubeTest
+
+    add_parameter_option(f, next(x for x in dataclasses.fields(CubeTest) if x.name == "threads"),
+                         note=", over the file's run.threads", default=None)
     f.add_argument("--restart", action="store_true",
                    help="continue the run of --out's checkpoint.npz, bit for bit (the same file and --set)")
     _extend_option(f, "--restart")

@@ -156,3 +156,13 @@ def test_integers_are_said_as_integers_from_a_file_and_python(cli, tmp_path):
     assert "(got 1180591620717411303424)" in line and "e+21" not in line, line
     with pytest.raises(ValueError, match=r"\(got 1180591620717411303424\)"):
         ldem.CubeTest(seed=2 ** 70).params()
+
+
+def test_threads_0_is_said_once_for_every_command(cli):
+    """The table's words (pkg/ldem/Parameters.hpp) in ldem cube, run and bench: ldem run said "all cores"."""
+    table = next(p["help"] for p in ldem.cube.PARAMETERS if p["name"] == "threads")
+    assert table.startswith("OpenMP threads (0: OMP_NUM_THREADS if set, else one per 50,000 bars")
+    for command in (["cube"], ["run", "x.toml"], ["bench"]):
+        text = " ".join(cli(*command[:1], "--help").stdout.split())
+        assert f"--threads THREADS {table}; >= 0" in text, (command, text)
+        assert "all cores" not in text
