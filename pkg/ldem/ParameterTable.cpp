@@ -64,7 +64,7 @@ T fromValue(const std::string& name, const ParamValue& v, const Domain& d) {
                             : *x >= double(std::numeric_limits<T>::min()) && *x < 0x1p63 && std::int64_t(*x) <= hi;
         if (!fits)
             throw std::invalid_argument(name + " is out of range: a whole number from " + std::to_string(lo) + " to " +
-                                        std::to_string(hi) + " (got " + (i ? std::to_string(*i) : formatNumber(*x)) + ")");
+                                        std::to_string(hi) + " (got " + (i ? std::to_string(*i) : formatWhole(*x)) + ")");
         return T(i ? *i : std::int64_t(*x));
     }
 }

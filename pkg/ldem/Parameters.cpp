@@ -1,5 +1,7 @@
 #include "ldem/Parameters.hpp"
 
+#include <cstdio>
+
 namespace ldem {
 
 std::string formatNumber(double x) {
@@ -7,6 +9,12 @@ std::string formatNumber(double x) {
     s.precision(6);
     s << x;
     return s.str();
+}
+
+std::string formatWhole(double x) {
+    char s[400];  // the largest double has 309 digits
+    std::snprintf(s, sizeof s, "%.0f", x);
+    return s;
 }
 
 std::string Domain::describe() const {

@@ -261,6 +261,7 @@ struct Domain {
 };
 
 std::string formatNumber(double x);  // shortest form of 6 significant digits
+std::string formatWhole(double x);   // a whole number as all its digits: 2^70 is not 1.18059e+21
 
 // The bar laws by name, in the registry's order (laws/Registry.hpp): the choices of `law`,
 // whose value is a BarLawId, the law's index in the registry.
@@ -272,7 +273,8 @@ void checkParameter(const char* name, const char* unit, const T& value, const Do
     if constexpr (std::is_arithmetic_v<T> && !std::is_same_v<T, bool>) {
         if (!d.contains(double(value)))
             throw std::invalid_argument(std::string(name) + " must be " + d.describe() + " (got " +
-                                        formatNumber(double(value)) + (*unit ? std::string(" ") + unit : "") + ")");
+                                        (std::is_integral_v<T> ? std::to_string(value) : formatNumber(double(value))) +
+                                        (*unit ? std::string(" ") + unit : "") + ")");
     }
 }
 

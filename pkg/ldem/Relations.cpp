@@ -23,7 +23,7 @@ void checkRelations(const Material& m, const LoadingParams& l, const RunParams&,
     if (m.GfCV == 0 && m.GfMean < std::min(Gb, Gn)) {
         msg << "Gf_mean " << m.GfMean << " N/m (the same in every bar, Gf_cv 0) makes every bar perfectly brittle: "
             << "it is below E A eps_p^2 L / (2 A_f) = " << std::min(Gb, Gn) << " N/m (E, nu, eps_p, c_a and L0 = "
-            << L0 << " m); raise Gf_mean or lower c_a";
+            << L0 << " m); raise Gf_mean or c_a (the bound goes as 1 / c_a)";
         throw std::invalid_argument(msg.str());
     }
     if (const double epsR = meanLimitStrain(m, L0); !(epsR <= 1)) {

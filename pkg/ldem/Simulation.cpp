@@ -86,7 +86,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
                                         " drew a G_f below E A eps_p^2 L / (2 A_f) (" +
                                         formatNumber(brittleFractureEnergy(mat_, lat_.L0, false)) +
                                         " N/m for a normal bar), with Gf_mean " + formatNumber(mat_.GfMean) +
-                                        " N/m: raise Gf_mean or lower c_a");
+                                        " N/m: raise Gf_mean or c_a (the bound goes as 1 / c_a)");
     }
     u_ = v_ = f_ = Field3(lat_.numNodes());
     preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);

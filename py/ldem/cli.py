@@ -4,20 +4,34 @@ turns every failure into one line and an exit code."""
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import os
+import re
 import signal
 import sys
 
 
 from .bench import cmd_bench
 from .rerun import RERUN_SKIPS, cmd_rerun  # noqa: F401 (RERUN_SKIPS: the fields a rerun does not compare)
-from .helptext import HelpFormatter
+from .cube import CubeTest
+from .helptext import HelpFormatter, add_parameter_option
 from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
 from .signals import Terminated, terminate_on_sigterm
 
 
+CUBE_FIELDS = {f.name: f for f in dataclasses.fields(CubeTest)}
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error (no usage dump) and exit code 2."""
+    """argparse with a one-line error (no usage dump) and exit code 2, and a
+    negative number in any notation taken as the value it is (--eps-p -1e-5)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern knows -1 and -.5 but not -1e-5, which it took for an option and answered
+        # "expected one argument" where the bounds should be said. Any "-" before a digit (or ".digit") is
+        # a number here: no option of ldem looks like one.
+        self._negative_number_matcher = re.compile(r"-\.?\d")
 
     def error(self, message):
         self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
@@ -42,7 +56,7 @@ def build_parser() -> argparse.ArgumentParser:
                        formatter_class=HelpFormatter)
     b.add_argument("--modules", type=int, default=24, metavar="N", help="modules per side")
     b.add_argument("--steps", type=int, default=200, metavar="S", help="steps per repetition")
-    b.add_argument("--threads", type=int, default=0, metavar="T", help="OpenMP threads (0: all cores)")
+    add_parameter_option(b, CUBE_FIELDS["threads"])  # ldem-bench's threads are a run's: the table's words
     b.add_argument("--repeats", type=int, default=5, metavar="R", help="repetitions (the median is reported)")
     b.add_argument("--damaged", action="store_true",
                    help="then pull the cube to load loss and time the same steps from there (damaged_* fields)")

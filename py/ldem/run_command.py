@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import dataclasses
+import json
 import os
 import sys
 
@@ -40,6 +41,7 @@ def cube_from_args(args) -> "CubeTest":
 
 
 def cmd_cube(args) -> int:
+    _restart_or_overwrite(args)
     if args.restart:  # the test of the checkpoint (or final state), in its folder
         if args.extend is None and finished(args.restart, f"ldem cube --restart {args.restart}"):
             return 0
@@ -52,6 +54,8 @@ def cmd_cube(args) -> int:
         raise ValueError("--extend goes with --restart DIR: the finished run to take further")
     test = cube_from_args(args)
     params = test.params()  # every input checked before the warnings below and before any output
+    if _kept(args, test, f"ldem cube --restart {args.out}"):
+        return 0
     warn_brittle(args.command, params.material, test.L0)
     from ._core import allowed_cores
 
@@ -106,10 +110,10 @@ def _continuation(args) -> dict:
                 extend=args.extend is not None)
 
 
-def finished(out: str, restart: str) -> bool:
-    """out holds a finished run (summary.json says done): --restart says so and
-    runs nothing, and how to extend it if it can be (restart: the command that
-    restarts it)."""
+def finished(out: str, restart: str, again: bool = False) -> bool:
+    """out holds a finished run (summary.json says done): --restart (or, with
+    again, a run of the same parameters) says so and runs nothing, and how to
+    extend it if it can be (restart: the command that restarts it)."""
     from .io import FINAL_STATE, read_summary
 
     try:
@@ -119,8 +123,65 @@ def finished(out: str, restart: str) -> bool:
     if done:
         further = f"; to take it further: {restart} --extend STRAIN" \
             if os.path.exists(os.path.join(out, FINAL_STATE)) else ""
-        print(f"{out} is a finished run (summary.json: done): nothing to continue{further}")
+        what = " of the same parameters: nothing to run (--overwrite runs it again)" if again else \
+            ": nothing to continue"
+        print(f"{out} is a finished run (summary.json: done){what}{further}")
     return done
+
+
+def _kept(args, test, restart: str) -> bool:
+    """Before a fresh run into args.out: True when it holds test's own finished run (said so, nothing to run);
+    a finished run of other parameters is refused, naming them, unless --overwrite. A restart continues
+    its folder's run and is not asked; a folder without a finished run is written as before."""
+    if args.restart or args.overwrite:
+        return False
+    from .io import read_summary
+
+    try:
+        old = read_summary(os.path.join(args.out, "summary.json"))
+    except (OSError, ValueError):
+        return False
+    if not isinstance(old, dict) or old.get("status") != "done":
+        return False
+    differ = _other_parameters(old.get("parameters") or {}, json.loads(json.dumps(test.parameters())))
+    if not differ:
+        return finished(args.out, restart, again=True)
+    more = f" and {len(differ) - 3} more" if len(differ) > 3 else ""
+    raise ValueError(f"{args.out} holds a finished run of other parameters ({'; '.join(differ[:3])}{more}): "
+                     "give another --out, or --overwrite")
+
+
+def _other_parameters(old: dict, new: dict) -> list:
+    """What differs between the parameters of two runs ("seed 1, not 2": the folder's, then this one's), the
+    thread count aside (the results do not depend on it). A parameter the folder's summary lacks ran at the
+    table's default (it was declared later), as ldem rerun reads it."""
+    from .cube import TABLE_DEFAULTS
+    from .rerun import differences, field
+
+    if ("description" in old) != ("description" in new):
+        kinds = ("a specimen file's", "a cube's")
+        return [f"{kinds['description' not in old]}, not {kinds['description' not in new]}"]
+    if "description" in new:  # a file's material, loading and run are its parameters: said once, by name
+        pairs = [({k: v for k, v in d.items() if k not in ("material", "loading", "run")}
+                  for d in (old.get("description") or {}, new["description"])),
+                 ({**TABLE_DEFAULTS, **(old.get("parameters") or {})}, new["parameters"])]
+    else:
+        pairs = [({**TABLE_DEFAULTS, **old}, new)]
+    return [f"{path} {_said(field(a, path))}, not {_said(field(b, path))}"
+            for a, b in pairs for path in differences(a, b, skip=("threads",))]
+
+
+def _said(value) -> str:
+    """A parameter's value in a message: a number or a word as written, anything else as its JSON, cut short."""
+    if isinstance(value, (int, float, str)) and not isinstance(value, bool):
+        return str(value)
+    text = json.dumps(value)
+    return text if len(text) <= 40 else text[:37] + "..."
+
+
+def _restart_or_overwrite(args) -> None:
+    if args.restart and args.overwrite:
+        raise ValueError("--overwrite runs afresh and --restart continues: give one of them")
 
 
 def _snapshots(args) -> list:
@@ -194,6 +255,7 @@ def cmd_run(args) -> int:
     from .runner import run_cube
     from .specimen import SpecimenTest
 
+    _restart_or_overwrite(args)
     overrides = settings(args.set)
     if args.threads is not None:
         overrides["threads"] = args.threads
@@ -202,11 +264,13 @@ def cmd_run(args) -> int:
             raise ValueError("--extend goes with --restart: the finished run in --out to take further")
         overrides.update(final_strain=args.extend, stop_at="separation")
     test = SpecimenTest.from_file(args.file, overrides)
-    warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
     args.out = args.out or os.path.join("out", os.path.splitext(os.path.basename(args.file))[0])
     restart = f"ldem run {args.file} --out {args.out} --restart" + "".join(f" --set {s}" for s in args.set)
     if args.restart and args.extend is None and finished(args.out, restart):
         return 0
+    if _kept(args, test, restart):
+        return 0
+    warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
                       checkpoint_every=args.checkpoint_every, restart=args.restart, **_continuation(args))
@@ -223,6 +287,9 @@ def _output_options(p: argparse.ArgumentParser) -> None:
                    help="mean strains at which to write bars_NNNN.vtu and crack_NNNN.vtu for ParaView "
                         "(comma-separated; the end state is always written)")
     p.add_argument("--no-plots", action="store_true", help="write curve.csv and summary.json only")
+    p.add_argument("--overwrite", action="store_true",
+                   help="run even where --out holds a finished run, and replace its files (without it: a finished "
+                        "run of other parameters is refused, one of the same parameters is not run again)")
     add_output_flags(p)
 
 
@@ -282,8 +349,10 @@ def add_parsers(sub) -> None:
     f.add_argument("--out", default=None, metavar="DIR", help="output folder (default: out/FILE's name)")
     f.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="a material, loading or run parameter over the file's (repeatable), e.g. --set seed=2")
-    f.add_argument("--threads", type=int, default=None, metavar="T",
-                   help="OpenMP threads, over the file's run.threads (0: OMP_NUM_THREADS if set, else all cores)")
+    from .cube import CubeTest
+
+    add_parameter_option(f, next(x for x in dataclasses.fields(CubeTest) if x.name == "threads"),
+                         note=", over the file's run.threads", default=None)
     f.add_argument("--restart", action="store_true",
                    help="continue the run of --out's checkpoint.npz, bit for bit (the same file and --set)")
     _extend_option(f, "--restart")

@@ -78,6 +78,30 @@ def point(value, where: Where, key: str) -> np.ndarray:
     return np.array([number(v, where, key, positive=False) for v in value])
 
 
+# A bound may sit on the box's face to its decimals, or a hair beyond it to be sure of the face's modules
+# (tests/py/test_cutouts.py runs a slot a thousandth of a module past the faces): a hundredth of a module.
+ON_THE_BOX = 0.01
+
+
+def inside(value, lo, hi, L0: float, where: Where, key: str, axes: str = "xyz") -> None:
+    """Refuses a point (or the coordinates along `axes`) beyond the specimen's box lo..hi: a notch, cutout or
+    group out there cuts or selects less than it says, or nothing, and the run would not say so."""
+    x, lo, hi = (np.atleast_1d(np.asarray(v, float)) for v in (value, lo, hi))
+    tol = ON_THE_BOX * L0
+    if np.all(x >= lo - tol) and np.all(x <= hi + tol):
+        return
+    got = ", ".join(f"{v:g}" for v in x)
+    raise where(key, f"must lie inside or on the specimen's box, {box_words(lo, hi, axes)} m "
+                     f"(got {f'[{got}]' if len(x) > 1 else got})")
+
+
+def box_words(lo, hi, axes: str = "xyz") -> str:
+    """'[0, 0.35] x [0, 0.05] x [0, 0.1]', or along one axis 'x in [0, 0.35]'."""
+    if len(axes) == 1:
+        return f"{axes} in [{lo[0]:g}, {hi[0]:g}]"
+    return " x ".join(f"[{a:g}, {b:g}]" for a, b in zip(lo, hi))
+
+
 def _modules(length: float, L0: float, where: Where, key: str) -> int:
     if not length / L0 <= 1e5:  # ldem cube's bound (CubeGeometry::modules): no count below overflows
         raise where(key, f"{length:g} m is {length / L0:g} modules of L0 = {L0:g} m: far beyond any machine")
@@ -125,7 +149,7 @@ def module_mask(shape: dict, where: Optional[Where] = None):
         if "notch" in shape:
             mask &= ~_notch(shape["notch"], x, z, size, L0, where)
         if "cutout" in shape:
-            mask &= ~_cutout(shape["cutout"], x, y, z, where)
+            mask &= ~_cutout(shape["cutout"], x, y, z, size, L0, where)
     elif kind == "cylinder":
         r = [x, y, z]
         across = [r[a] - 0.5 * d for a in range(3) if a != axis]
@@ -152,10 +176,14 @@ def _notch(notch, x, z, size, L0, where) -> np.ndarray:
         raise where("shape.notch.depth", f"must be in [0, {size[2]:g}) m (got {depth:g})")
     if width < L0 * (1 - 1e-9):
         raise where("shape.notch.width", f"must be at least one module, {L0:g} m (got {width:g})")
+    left, right = at - 0.5 * width, at + 0.5 * width
+    if not (left >= -ON_THE_BOX * L0 and right <= size[0] + ON_THE_BOX * L0):
+        raise where("shape.notch.at", f"the slot, x from {left:g} to {right:g} m, must lie inside or on the "
+                                      f"specimen's box, {box_words([0], [size[0]], 'x')} m (got at = {at:g})")
     return (np.abs(x - at) < 0.5 * width) & (z < depth)
 
 
-def _cutout(cut, x, y, z, where) -> np.ndarray:
+def _cutout(cut, x, y, z, size, L0, where) -> np.ndarray:
     """The modules whose centres are inside the box {min, max} (e.g. the
     missing quadrant of an L-shaped panel)."""
     if not isinstance(cut, dict):
@@ -164,6 +192,8 @@ def _cutout(cut, x, y, z, where) -> np.ndarray:
     lo, hi = point(cut.get("min"), where, "shape.cutout.min"), point(cut.get("max"), where, "shape.cutout.max")
     if (hi <= lo).any():
         raise where("shape.cutout.max", f"must be above min on every axis (min {list(lo)}, max {list(hi)})")
+    for k, p in (("min", lo), ("max", hi)):
+        inside(p, [0, 0, 0], size, L0, where, f"shape.cutout.{k}")
     return (x > lo[0]) & (x < hi[0]) & (y > lo[1]) & (y < hi[1]) & (z > lo[2]) & (z < hi[2])
 
 

@@ -33,7 +33,7 @@ import numpy as np
 
 from . import _core
 from .cube import PARAMETERS, TABLE_DEFAULTS, CubeResult, run_test
-from .shapes import AXES, Nodes, SpecimenError, Where, check_keys, module_mask, named, number, point
+from .shapes import AXES, Nodes, SpecimenError, Where, check_keys, inside, module_mask, named, number, point
 
 _PARAMS = {p["name"]: p for p in PARAMETERS}
 # Cube-only parameters: a specimen says the same with its groups.
@@ -75,21 +75,22 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
             if not (isinstance(c, dict) and len(c) == count and all(a in AXES for a in c)):
                 raise where(f"{key}.{kind}", f"must be {count} coordinate(s), e.g. {example} (got {c!r})")
             for axis, at in c.items():
-                sel &= np.abs(nodes.x[:, AXES[axis]] - number(at, where, f"{key}.{kind}", positive=False)) <= nodes.tol
+                at = number(at, where, f"{key}.{kind}", positive=False)
+                a = AXES[axis]
+                inside(at, nodes.lo[a], nodes.hi[a], nodes.L0, where, f"{key}.{kind}", axis)
+                sel &= np.abs(nodes.x[:, a] - at) <= nodes.tol
             chosen = True
     if "box" in spec:
         box = spec["box"]
         if not (isinstance(box, dict) and set(box) == {"min", "max"}):
             raise where(f"{key}.box", "must be {min = [x, y, z], max = [x, y, z]}")
         lo, hi = point(box["min"], where, f"{key}.box"), point(box["max"], where, f"{key}.box")
+        for p in (lo, hi):
+            inside(p, nodes.lo, nodes.hi, nodes.L0, where, f"{key}.box")
         sel &= np.all((nodes.x >= lo - nodes.tol) & (nodes.x <= hi + nodes.tol), axis=1)
         chosen = True
     if "point" in spec:
-        p = point(spec["point"], where, f"{key}.point")
-        d = np.where(sel, np.linalg.norm(nodes.x - p, axis=1), np.inf)
-        k = int(np.argmin(d))
-        if not d[k] <= nodes.L0:
-            raise where(f"{key}.point", f"no node of the specimen within L0 of {list(p)}")
+        k = nearest(nodes, sel, spec["point"], where, f"{key}.point")
         sel = np.zeros_like(sel)
         sel[k] = True
         chosen = True
@@ -99,6 +100,17 @@ def select(nodes: Nodes, name: str, spec: dict, groups: dict, where: Where) -> n
     if len(ids) == 0:
         raise where(key, "selects no node of the specimen")
     return ids
+
+
+def nearest(nodes: Nodes, among: np.ndarray, value, where: Where, key: str) -> int:
+    """The node (of those `among`) nearest the point `value`, within L0 of it, which lies in the specimen's box."""
+    p = point(value, where, key)
+    inside(p, nodes.lo, nodes.hi, nodes.L0, where, key)
+    d = np.where(among, np.linalg.norm(nodes.x - p, axis=1), np.inf)
+    k = int(np.argmin(d))
+    if not d[k] <= nodes.L0:
+        raise where(key, f"no node of the specimen within L0 of {list(p)}")
+    return k
 
 
 def _directions(value, where: Where, key: str) -> list:
@@ -196,11 +208,11 @@ class Build:
             check_keys(q, {"a", "b", "direction"}, where, key + ".")
             if not named(q.get("direction"), AXES):
                 raise where(f"{key}.direction", f"must be x, y or z (got {q.get('direction')!r})")
-            a = select(nodes, name, {"point": q["a"]}, {}, where) if "a" in q else [-1]
+            a = nearest(nodes, nodes.present, q["a"], where, f"{key}.a") if "a" in q else -1
             if "b" not in q:
                 raise where(f"{key}.b", "missing: the point whose displacement is read")
-            b = select(nodes, name, {"point": q["b"]}, {}, where)
-            out["probes"].append((name, int(a[0]), int(b[0]), AXES[q["direction"]]))
+            b = nearest(nodes, nodes.present, q["b"], where, f"{key}.b")
+            out["probes"].append((name, int(a), int(b), AXES[q["direction"]]))
         names = [q[0] for q in out["probes"]]
         if "control" in m and not named(m["control"], names):
             raise where("measure.control", f"must name a probe (got {m['control']!r}; probes: {', '.join(names)})")

@@ -75,7 +75,11 @@ BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 
 
 @pytest.mark.parametrize("args,message", [
     (["--Gf-mean", "1e-30"], BRITTLE),
-    (["--c-a", "1e-300"], "every bar is perfectly brittle"),
+    (["--c-a", "1e-300"], "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 L / (2 A_f) "
+                          "(5.5566e+299 N/m for a normal bar), with Gf_mean 100 N/m: raise Gf_mean or c_a "
+                          "(the bound goes as 1 / c_a)"),
+    (["--Gf-mean", "2", "--Gf-cv", "0", "--c-a", "1e-3"], "= 473 N/m (E, nu, eps_p, c_a and L0 = 0.02 m); "
+                                                          "raise Gf_mean or c_a (the bound goes as 1 / c_a)"),
     (["--c-a", "1.5"], "c_a must be in (0, 1] (got 1.5)"),
     (["--Gf-mean", "2", "--Gf-cv", "0"], "Gf_mean 2 N/m (the same in every bar, Gf_cv 0) makes every bar "
                                          "perfectly brittle: it is below E A eps_p^2 L / (2 A_f) = 3.41 N/m"),
@@ -108,3 +112,57 @@ def test_the_help_states_the_rules_with_true_numbers(cli):
                  "(6.4e4 N/m at the defaults)", "at most eps_p / strain_rate", "at most 1: a bar's fracture area at most a module's face",
                  "it can never reach the peak", "more than 1e-6 eps_p in one step"):
         assert rule in text, rule
+
+
+def test_raising_c_a_is_what_lowers_the_brittle_bound():
+    """The advice of the messages above: G_b = E A eps_p^2 L / (2 A_f) with A_f = c_a L0^2, so twice c_a halves it."""
+    low, high = (ldem.CubeTest(c_a=c).params().material for c in (0.1, 0.2))
+    for diagonal in (False, True):
+        assert _core.brittle_fracture_energy(high, 0.02, diagonal) == \
+            pytest.approx(_core.brittle_fracture_energy(low, 0.02, diagonal) / 2, rel=1e-12)
+
+
+@pytest.mark.parametrize("args", [["--eps-p", "-1e-5"], ["--eps-p=-1e-5"]], ids=["apart", "joined"])
+def test_a_negative_number_is_a_value_in_any_notation(cli, tmp_path, args):
+    """argparse took -1e-5 (not -1 or -.5) for an option: "expected one argument"; now it is the value, out of bounds."""
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args)) == \
+        "ldem cube: error: eps_p must be in (0, 0.01] (got -1e-05)"
+    assert not (tmp_path / "o").exists()
+
+
+def test_negative_values_reach_every_commands_check(cli, tmp_path):
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), "--zeta", "-2.5E-3")) == \
+        "ldem cube: error: zeta must be in [0, 10] (got -0.0025)"
+    line = _error(cli("run", os.path.join(ROOT, "examples", "cube_uniform.toml"), "--threads", "-1e0",
+                      "--out", str(tmp_path / "o")))
+    assert line == "ldem run: error: argument --threads: invalid int value: '-1e0'", line  # a value, not an option
+
+
+@pytest.mark.parametrize("args,got", [
+    (["--seed", str(2 ** 70)], "seed is out of range: a whole number from 0 to 9223372036854775807 "
+                               "(got 1180591620717411303424)"),
+    (["--threads", "-10000000"], "threads must be >= 0 (got -10000000)"),
+    (["--record-every", "-123456789"], "record_every must be >= 0 (got -123456789 steps)"),
+])
+def test_integers_are_said_as_integers(cli, tmp_path, args, got):
+    assert _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args)) == f"ldem cube: error: {got}"
+
+
+def test_integers_are_said_as_integers_from_a_file_and_python(cli, tmp_path):
+    text = open(os.path.join(ROOT, "examples", "cube_uniform.toml")).read() + f"\n[run]\nseed = {2 ** 70}\n"
+    path = tmp_path / "cube.toml"
+    path.write_text(text)
+    line = _error(cli("run", str(path), "--out", str(tmp_path / "o")))
+    assert "(got 1180591620717411303424)" in line and "e+21" not in line, line
+    with pytest.raises(ValueError, match=r"\(got 1180591620717411303424\)"):
+        ldem.CubeTest(seed=2 ** 70).params()
+
+
+def test_threads_0_is_said_once_for_every_command(cli):
+    """The table's words (pkg/ldem/Parameters.hpp) in ldem cube, run and bench: ldem run said "all cores"."""
+    table = next(p["help"] for p in ldem.cube.PARAMETERS if p["name"] == "threads")
+    assert table.startswith("OpenMP threads (0: OMP_NUM_THREADS if set, else one per 50,000 bars")
+    for command in (["cube"], ["run", "x.toml"], ["bench"]):
+        text = " ".join(cli(*command[:1], "--help").stdout.split())
+        assert f"--threads THREADS {table}; >= 0" in text, (command, text)
+        assert "all cores" not in text

@@ -205,6 +205,60 @@ def test_a_bad_file_is_one_line_naming_the_key_and_exit_2(cli, tmp_path, change,
     assert not os.path.exists(tmp_path / "out" / "summary.json")
 
 
+BEAM_NOTCH = "notch = {depth = 0.02, width = 0.01}"
+BEAM_LOAD_BOX = "box = {min = [0.17, 0.0, 0.10], max = [0.18, 0.05, 0.10]}"
+
+
+@pytest.mark.parametrize("old, new, key, message", [
+    (BEAM_NOTCH, BEAM_NOTCH + "\ncutout = {min = [1.0, 1.0, 1.0], max = [2.0, 2.0, 2.0]}", "shape.cutout.min",
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [1, 1, 1])"),
+    (BEAM_NOTCH, BEAM_NOTCH + "\ncutout = {min = [0.3, 0.0, 0.0], max = [0.4, 0.05, 0.05]}", "shape.cutout.max",
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [0.4, 0.05, 0.05])"),
+    (BEAM_NOTCH, "notch = {depth = 0.02, width = 0.01, at = 5.0}", "shape.notch.at",
+     "the slot, x from 4.995 to 5.005 m, must lie inside or on the specimen's box, x in [0, 0.35] m (got at = 5)"),
+    (BEAM_NOTCH, "notch = {depth = 0.02, width = 0.02, at = 0.0}", "shape.notch.at",
+     "the slot, x from -0.01 to 0.01 m, must lie inside or on the specimen's box, x in [0, 0.35] m (got at = 0)"),
+    ("plane = {x = 0.05}", "plane = {x = 0.5}", "groups.left.plane",
+     "must lie inside or on the specimen's box, x in [0, 0.35] m (got 0.5)"),
+    ("plane = {x = 0.05}", "box = {min = [0.05, -0.05, 0.0], max = [0.05, 0.10, 0.0]}", "groups.left.box",
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [0.05, -0.05, 0])"),
+    (BEAM_LOAD_BOX, "box = {min = [0.17, 0.0, 0.10], max = [0.18, 0.05, 0.15]}", "groups.load.box",  # the platen
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [0.18, 0.05, 0.15])"),
+    (BEAM_LOAD_BOX, "point = [0.175, 0.025, 0.105]", "groups.load.point",
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [0.175, 0.025, 0.105])"),
+    ("a = [0.17, 0.0, 0.0]", "a = [0.17, 0.0, -0.005]", "measure.probes.cmod.a",
+     "must lie inside or on the specimen's box, [0, 0.35] x [0, 0.05] x [0, 0.1] m (got [0.17, 0, -0.005])"),
+])
+def test_geometry_beyond_the_specimen_s_box_is_refused_at_its_line(cli, tmp_path, old, new, key, message):
+    """A cutout, notch, group (a platen too) or probe out of the box cut or selected nothing of what it said, or
+    less (a box partly out took the nodes on the face, a point within L0 of one the nearest), and ran without a
+    word: each is refused before the lattice is built, at its key and line."""
+    text = open(os.path.join(ROOT, "examples", "beam_3pb.toml")).read()
+    assert text.count(old) == 1
+    path = tmp_path / "beam.toml"
+    path.write_text(text.replace(old, new))
+    r = cli("run", str(path), "--out", str(tmp_path / "out"), "--no-progress")
+    assert r.returncode == 2, r.stderr
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.stderr, r.stderr
+    line = int(re.match(rf"ldem run: error: {re.escape(str(path))}:(\d+): ", lines[0]).group(1))
+    assert lines[0] == f"ldem run: error: {path}:{line}: {key}: {message}"
+    assert new.splitlines()[-1] in path.read_text().splitlines()[line - 1]  # the line of the key named
+    assert not os.path.exists(tmp_path / "out")
+
+
+def test_geometry_on_the_box_s_faces_is_inside():
+    """On the faces is inside: a cutout to them, a notch at an end, a platen over the whole upper face."""
+    data = example("beam_3pb")
+    shape = dict(data["shape"], notch={"depth": 0.02, "width": 0.02, "at": 0.34},
+                 cutout={"min": [0.3, 0.0, 0.05], "max": [0.35, 0.05, 0.1]})
+    groups = dict(data["groups"], load={"box": {"min": [0.0, 0.0, 0.1], "max": [0.35, 0.05, 0.1]},
+                                        "drive": {"z": -1.0}})
+    test = SpecimenTest.of(**dict(data, shape=shape, groups=groups))
+    assert (~test.build.mask).sum() == 5 * 5 * 5 + 2 * 2 * 5  # the cutout's 5 x 5 x 5 modules, the slot's 2 x 2 (x 5)
+    assert len(test.build.groups["load"]) == 36 * 6 - 5 * 6  # the upper face's nodes, less the cutout's corner
+
+
 def test_keyword_arguments_build_what_the_file_builds():
     data = example("beam_3pb")
     a, b = SpecimenTest.from_file(os.path.join(ROOT, "examples", "beam_3pb.toml")), SpecimenTest.of(**data)
