@@ -18,16 +18,20 @@ ratio of the largest to the smallest size's peak, their change against base)
 and ratio.png (that ratio against each variant, beside Table 3's)."""
 from __future__ import annotations
 
+import dataclasses
 import os
 import sys
 from typing import Callable, List, Sequence
 
 from ... import io
 from ..cases import case_name
-from ..executors import run_cases
-from ..options import add_seeds, check_tests, parse_floats, parse_names, parameter_option, seed_count
+from ..executors import default_threads, run_cases
+from ..options import (add_seeds, check_tests, parse_floats, parse_loads, parse_names, parameter_option,
+                       seed_count)
+from ..settings import size_effect_tests
+from ..size_effect import run_size_effect
 from ..registry import Study, register
-from .fit import fit_table, fit_overrides, parse_grid, run_fit
+from .fit import fit_overrides, fit_table, fit_variant, parse_grid, run_fit
 from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table
 from .variants import SETTINGS, SIZES, plan
 
@@ -46,6 +50,17 @@ def run_seed_settings(settings: Sequence[str], sizes: Sequence[float], seeds: Se
     return sens
 
 
+def run_fitted_study(point: dict, sizes: Sequence[float], seeds: int, loads: Sequence[str], out: str, jobs: int = 1,
+                     threads: int = 0, fmt: str = "png") -> tuple:
+    """The size-effect study's cases (settings.size_effect_tests: stops, tails) with
+    the fitted point's parameters at each size; its tables, fractal fit and report."""
+    overrides = fit_variant(point).overrides
+    tests = [dataclasses.replace(t, **overrides(t.size))
+             for t in size_effect_tests(sizes, seeds, loads, threads=threads or default_threads(jobs))]
+    check_tests(tests)
+    return run_size_effect(tests, out, jobs=jobs, progress=False, figure_format=fmt)
+
+
 def add_arguments(a) -> None:
     a.add_argument("--out", required=True, metavar="DIR",
                    help="study folder (cases/, runs.csv, sensitivity.csv, sensitivity.md, ratio.png)")
@@ -59,6 +74,11 @@ def add_arguments(a) -> None:
     a.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once in separate processes")
     parameter_option(a, "threads", note="; per case")
     a.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"), help="format of the figure")
+    a.add_argument("--study", action="append", default=[], metavar="NAME=VALUE",
+                   help="run no sensitivity study: the whole size-effect study (ldem study size-effect, its sizes, "
+                        "seeds and loads: --sizes 0.12,0.24,0.48,0.72,0.96 --seeds 6) at this fitted setting "
+                        "(repeatable; as --fit reads it: strain_rate and rate_periods a constant drive)")
+    a.add_argument("--loads", default="uniform,triangular", help="--study: comma-separated loads")
     a.add_argument("--fit", action="append", default=[], metavar="NAME=V1,V2,...",
                    help="run no sensitivity study: fit this parameter (once or twice: at most two) on these values "
                         "to Table 3's five sizes (strain_rate and rate_periods: a constant drive); writes fit.csv, "
@@ -66,6 +86,11 @@ def add_arguments(a) -> None:
 
 
 def cmd_seed_settings(args) -> int:
+    if args.study:
+        point = {k: v[0] for k, v in parse_grid(args.study).items()}
+        run_fitted_study(point, parse_floats(args.sizes, "--sizes"), seed_count(args), parse_loads(args.loads),
+                         args.out, args.jobs, args.threads, args.figure_format)
+        return 0
     if args.fit:
         grid = parse_grid(args.fit)
         for name, values in grid.items():

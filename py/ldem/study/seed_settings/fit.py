@@ -13,7 +13,7 @@ from ..executors import run_cases
 from ..options import FIELDS, check_tests, parse_floats
 from ..tables import REFERENCE_UNIFORM
 from .tables import run_rows
-from .variants import CONSTANT, DEFAULT, Variant, constant_rate, fixed, variant_test
+from .variants import DEFAULT, Variant, constant_rate, fixed, periods_rate, variant_test
 
 # The fit (committed before it runs; docs/results.md, results/seed-settings/README.md):
 # at most two parameters, each on a grid of values given in advance; at every
@@ -31,7 +31,7 @@ def fit_overrides(name: str, value) -> Callable[[float], dict]:
     if name == "strain_rate":
         return constant_rate(value)
     if name == "rate_periods":
-        return fixed(**CONSTANT, rate_periods=value)
+        return periods_rate(value)
     if name not in FIELDS:
         raise ValueError(f"--fit {name}: not a parameter of ldem cube --help")
     return fixed(**{name: type(getattr(DEFAULT, name))(value)})

@@ -25,6 +25,14 @@ def constant_rate(rate: float) -> Callable[[float], dict]:
     return lambda size: {**CONSTANT, "strain_rate": rate, "ramp_time": float(f"{DEFAULT.eps_p / (4 * rate):.6g}")}
 
 
+def periods_rate(periods: float) -> Callable[[float], dict]:
+    """Rule (c)'s rate at a size: the mean strain grows by eps_p in `periods`
+    fundamental periods of that cube, rate = eps_p omega_1 / (2 pi N), a
+    constant drive (constant_rate). The same N at every size loads each cube in
+    the same number of its own wave transits (omega_1 ~ c / H)."""
+    return lambda size: constant_rate(float(f"{DEFAULT.eps_p * omega1(size) / (2 * math.pi * periods):.6g}"))(size)
+
+
 def axial_omega(size: float) -> float:
     """The frequency of the uniform drive's own field u = z eps e_z as a mode
     (its Rayleigh quotient): omega_d^2 = u'Ku / u'Mu = E H A eps^2 / (rho A H^3 eps^2 / 3),
@@ -34,14 +42,14 @@ def axial_omega(size: float) -> float:
 
 def fixed_damping(size: float) -> dict:
     """The 0.12 m cube's D_f = 2 zeta omega_1 at every size: zeta stated on its omega_1."""
-    return {"damping_omega": smallest_omega1()}
+    return {"damping_omega": omega1(SIZES[0])}
 
 
 _OMEGA1: Dict[float, float] = {}
 
 
-def smallest_omega1(size: float = SIZES[0]) -> float:
-    """omega_1 of the default cube of this size (its set-up's modal analysis)."""
+def omega1(size: float) -> float:
+    """omega_1 of the default cube of this size (its set-up's modal analysis; kept for the process)."""
     if size not in _OMEGA1:
         _OMEGA1[size] = CubeTest(size=size).simulation().omega1
     return _OMEGA1[size]
@@ -60,8 +68,10 @@ class Variant:
 
 SETTINGS: Dict[str, List[Variant]] = {
     "base": [Variant("base", "the cube's quasi-static default (paced, 0.02 /s)", fixed())],
-    "rate": [Variant("rate", "rule (c): eps_p in 3 periods T_1, constant", fixed(**CONSTANT, rate_periods=3.0))]
-    + [Variant("rate", f"constant {r:g} /s", constant_rate(r)) for r in (0.01, 0.03, 0.1, 0.3, 1.0)],
+    "rate": [Variant("rate", f"constant {r:g} /s", constant_rate(r)) for r in (0.01, 0.03, 0.1, 0.3, 1.0)],
+    # The rate scaled with the size: rule (c)'s N = 3 (quasi-static), then faster.
+    "periods": [Variant("periods", f"constant, eps_p in {n:g} T_1 (rule (c) N = {n:g})", periods_rate(n))
+                for n in (3.0, 1.0, 0.3)],
     "smooth start": [Variant("smooth start", "constant 0.1 /s, smooth start of 2 T_1 (the default's)",
                              fixed(**CONSTANT, strain_rate=0.1))],
     "damping": [Variant("damping", "zeta 1 % on omega_1", fixed(zeta=0.01)),
@@ -69,7 +79,9 @@ SETTINGS: Dict[str, List[Variant]] = {
                         lambda size: {"damping_omega": axial_omega(size)}),
                 Variant("damping", "zeta 2 % on the 0.12 m cube's omega_1 (one D_f at every size)", fixed_damping)],
     "upper face": [Variant("upper face", "lateral DOFs fixed", fixed(top_lateral="fixed"))],
-    "lower face": [Variant("lower face", "on rollers (lateral DOFs free)", fixed(bottom_lateral="free"))],
+    "lower face": [Variant("lower face", "on rollers (lateral DOFs free)", fixed(bottom_lateral="free")),
+                   Variant("lower face", "on rollers, and the constant rule (c) drive (N = 3)",
+                           lambda size: {**periods_rate(3.0)(size), "bottom_lateral": "free"})],
     "draw": [Variant("draw", "G_f per module", fixed(Gf_draw="module"))],
     "correlation": [Variant("correlation", f"correlation length {lc:g} m", fixed(corr_length=lc))
                     for lc in (0.03, 0.09)],
