@@ -31,7 +31,7 @@ from ..options import (add_seeds, check_tests, parse_floats, parse_loads, parse_
 from ..settings import size_effect_tests
 from ..size_effect import run_size_effect
 from ..registry import Study, register
-from .fit import fit_overrides, fit_table, fit_variant, parse_grid, run_fit
+from .fit import fit_overrides, fit_table, fit_variant, parse_grid, parse_point, run_fit
 from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table
 from .variants import SETTINGS, SIZES, plan
 
@@ -74,10 +74,14 @@ def add_arguments(a) -> None:
     a.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once in separate processes")
     parameter_option(a, "threads", note="; per case")
     a.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"), help="format of the figure")
-    a.add_argument("--study", action="append", default=[], metavar="NAME=VALUE",
-                   help="run no sensitivity study: the whole size-effect study (ldem study size-effect, its sizes, "
-                        "seeds and loads: --sizes 0.12,0.24,0.48,0.72,0.96 --seeds 6) at this fitted setting "
-                        "(repeatable; as --fit reads it: strain_rate and rate_periods a constant drive)")
+    a.add_argument("--study", action="store_true",
+                   help="run no sensitivity study: the whole size-effect study (ldem study size-effect's cases; "
+                        "give its sizes and seeds: --sizes 0.12,0.24,0.48,0.72,0.96 --seeds 6) with the --hold "
+                        "settings")
+    a.add_argument("--hold", action="append", default=[], metavar="NAME=VALUE",
+                   help="--fit, --study: a setting of every case (repeatable; strain_rate and rate_periods: a "
+                        "constant drive, rate_periods at each cube's own omega_1; a choice by its name, "
+                        "bottom_lateral=free)")
     a.add_argument("--loads", default="uniform,triangular", help="--study: comma-separated loads")
     a.add_argument("--fit", action="append", default=[], metavar="NAME=V1,V2,...",
                    help="run no sensitivity study: fit this parameter (once or twice: at most two) on these values "
@@ -86,9 +90,9 @@ def add_arguments(a) -> None:
 
 
 def cmd_seed_settings(args) -> int:
+    held = parse_point(args.hold)
     if args.study:
-        point = {k: v[0] for k, v in parse_grid(args.study).items()}
-        run_fitted_study(point, parse_floats(args.sizes, "--sizes"), seed_count(args), parse_loads(args.loads),
+        run_fitted_study(held, parse_floats(args.sizes, "--sizes"), seed_count(args), parse_loads(args.loads),
                          args.out, args.jobs, args.threads, args.figure_format)
         return 0
     if args.fit:
@@ -97,7 +101,7 @@ def cmd_seed_settings(args) -> int:
             for v in values:
                 fit_overrides(name, v)
         fit = run_fit(grid, range(1, seed_count(args) + 1), args.out, jobs=args.jobs, threads=args.threads,
-                      log=lambda s: print(s, file=sys.stderr))
+                      held=held, log=lambda s: print(s, file=sys.stderr))
         print(fit_table(fit), end="")
         return 0
     names = parse_names(args.settings, [s for s in SETTINGS if s != "base"], "setting",

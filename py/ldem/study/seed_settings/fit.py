@@ -3,7 +3,7 @@ from __future__ import annotations
 
 import itertools
 import os
-from typing import Callable, Dict, List, Sequence
+from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
@@ -34,12 +34,16 @@ def fit_overrides(name: str, value) -> Callable[[float], dict]:
         return periods_rate(value)
     if name not in FIELDS:
         raise ValueError(f"--fit {name}: not a parameter of ldem cube --help")
-    return fixed(**{name: type(getattr(DEFAULT, name))(value)})
+    default = getattr(DEFAULT, name)
+    if isinstance(default, str) and value not in FIELDS[name].metadata.get("choices", (value,)):
+        raise ValueError(f"{name}: '{value}' is not one of {', '.join(FIELDS[name].metadata['choices'])}")
+    return fixed(**{name: type(default)(value)})
 
 
-def fit_variant(point: Dict[str, float]) -> Variant:
+def fit_variant(point: dict) -> Variant:
+    """The variant of a point: its parameters (fitted and held) as fit_overrides reads them."""
     parts = [fit_overrides(k, v) for k, v in point.items()]
-    return Variant("fit", ", ".join(f"{k} {v:g}" for k, v in point.items()),
+    return Variant("fit", ", ".join(f"{k} {v:g}" if isinstance(v, float) else f"{k} {v}" for k, v in point.items()),
                    lambda size: {k: v for f in parts for k, v in f(size).items()})
 
 
@@ -66,14 +70,16 @@ def size_means(rows: Sequence[dict], label: str) -> Dict[float, tuple]:
 
 
 def run_fit(grid: Dict[str, Sequence[float]], seeds: Sequence[int], out: str, target=REFERENCE_UNIFORM, jobs: int = 1,
-            threads: int = 0, log: Callable[[str], None] = print) -> dict:
-    """The fit above on `grid` (one or two parameters: their values); writes
-    fit_runs.csv, fit.csv (J and the means per grid point) and fit.md; returns
-    {"parameters", "best", "J", "means", "points"}."""
+            threads: int = 0, held: Optional[dict] = None, log: Callable[[str], None] = print) -> dict:
+    """The fit above on `grid` (one or two parameters: their values), every
+    case with the `held` settings too; writes fit_runs.csv, fit.csv (J and the
+    means per grid point) and fit.md; returns {"parameters", "best", "held",
+    "J", "means", "points"}."""
     if not 1 <= len(grid) <= 2:
         raise ValueError("--fit: one or two parameters")
+    held = dict(held or {})
     names = list(grid)
-    points = [dict(zip(names, v)) for v in itertools.product(*(grid[n] for n in names))]
+    points = [{**held, **dict(zip(names, v))} for v in itertools.product(*(grid[n] for n in names))]
     sizes = sorted(target)
 
     def evaluate(pts):
@@ -94,21 +100,21 @@ def run_fit(grid: Dict[str, Sequence[float]], seeds: Sequence[int], out: str, ta
             J = {r[n]: r["J"] for r in table}
             x = parabola_vertex(xs[i - 1:i + 2], [J[v] for v in xs[i - 1:i + 2]])
             if x not in xs:
-                point = {n: float(f"{x:.4g}")}
+                point = {**held, n: float(f"{x:.4g}")}
                 rows += evaluate([point])
                 table.append({**point, "J": misfit(size_means(rows, fit_variant(point).label), target)})
                 if table[-1]["J"] < best["J"]:
                     best = dict(table[-1])
-    label = fit_variant({n: best[n] for n in names}).label
+    label = fit_variant({**held, **{n: best[n] for n in names}}).label
     means = size_means(rows, label)
     io.write_table(os.path.join(out, "fit_runs.csv"), rows, list(rows[0]))
     for r in table:
-        m = size_means(rows, fit_variant({n: r[n] for n in names}).label)
+        m = size_means(rows, fit_variant({**held, **{n: r[n] for n in names}}).label)
         for s in sizes:
             r[f"peak_{s:g}"], r[f"strain_{s:g}"] = m[s]
     io.write_table(os.path.join(out, "fit.csv"), table, list(table[0]))
-    result = {"parameters": names, "best": {n: best[n] for n in names}, "J": best["J"], "means": means,
-              "points": table}
+    result = {"parameters": names, "best": {n: best[n] for n in names}, "held": held, "J": best["J"],
+              "means": means, "points": table}
     io.write_text(os.path.join(out, "fit.md"), fit_table(result, target))
     return result
 
@@ -118,7 +124,8 @@ def fit_table(fit: dict, target=REFERENCE_UNIFORM) -> str:
     lines = ["| " + " | ".join(names) + " | J |", "|" + "---|" * (len(names) + 1)]
     lines += ["| " + " | ".join(f"{p[n]:g}" for n in names) + f" | {p['J']:.3e} |" for p in fit["points"]]
     best = ", ".join(f"{n} = {fit['best'][n]:g}" for n in names)
-    lines += ["", f"Fitted: {best} (J = {fit['J']:.3e}).", "",
+    held = ", ".join(f"{k} = {v}" for k, v in fit.get("held", {}).items())
+    lines += ["", f"Fitted: {best} (J = {fit['J']:.3e})" + (f", with {held} held." if held else "."), "",
               "| size [m] | peak [MPa] | Table 3 | residual | strain at peak | Table 3 | residual |",
               "|---|---|---|---|---|---|---|"]
     for s, (p, e) in fit["means"].items():
@@ -126,6 +133,19 @@ def fit_table(fit: dict, target=REFERENCE_UNIFORM) -> str:
         lines.append(f"| {s:g} | {p:.3f} | {p3:.2f} | {100 * (p / p3 - 1):+.1f} % | {e:.3e} | {e3:.2e} | "
                      f"{100 * (e / e3 - 1):+.1f} % |")
     return "\n".join(lines) + "\n"
+
+
+def parse_point(pairs: Sequence[str]) -> dict:
+    """NAME=VALUE pairs (--hold, --study) as a point: numbers as floats, a choice (bottom_lateral=free) as its name."""
+    point = {}
+    for pair in pairs:
+        name, sep, value = pair.partition("=")
+        name = name.strip()
+        if not sep or name not in FIELDS:
+            raise ValueError(f"expected NAME=VALUE with NAME a parameter of ldem cube --help (got '{pair}')")
+        point[name] = value.strip() if isinstance(getattr(DEFAULT, name), str) else float(value)
+        fit_overrides(name, point[name])
+    return point
 
 
 def parse_grid(specs: Sequence[str]) -> Dict[str, List[float]]:
