@@ -87,3 +87,15 @@ def test_the_fit_recovers_a_lower_bound_it_was_given(tmp_path):
     assert fit["J"] == pytest.approx(0.0, abs=1e-6)
     far = [p["J"] for p in fit["points"] if p["Gf_min"] in (0.0, 40.0)]
     assert min(far) > 1e-5  # the misfit sees the parameter: the grid's ends miss the targets
+
+
+def test_a_held_point_reads_choices_by_name_and_the_rate_by_each_cubes_periods():
+    point = F.parse_point(["bottom_lateral=free", "rate_periods=3"])
+    assert point == {"bottom_lateral": "free", "rate_periods": 3.0}
+    o = F.fit_variant(point).overrides(0.04)
+    omega1 = ldem.CubeTest(size=0.04).simulation().omega1
+    assert o["bottom_lateral"] == "free" and o["crack_pace"] == 1.0
+    assert o["strain_rate"] == pytest.approx(6.3e-5 * omega1 / (2 * math.pi * 3), rel=1e-5)  # rule (c), N = 3
+    for bad in (["bottom_lateral=loose"], ["nosuch=1"], ["rate_periods"]):
+        with pytest.raises(ValueError):
+            F.parse_point(bad)
