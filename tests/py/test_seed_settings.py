@@ -1,6 +1,7 @@
 """The settings the reference study does not report (ldem.study.seed_settings):
 each new parameter does what it says, the study runs on tiny cubes and its
 table is its runs' means, and the fit recovers a setting it was given."""
+import json
 import math
 
 import numpy as np
@@ -99,3 +100,23 @@ def test_a_held_point_reads_choices_by_name_and_the_rate_by_each_cubes_periods()
     for bad in (["bottom_lateral=loose"], ["nosuch=1"], ["rate_periods"]):
         with pytest.raises(ValueError):
             F.parse_point(bad)
+
+
+def test_the_proposal_runs_the_criterions_law_on_a_coarse_cube_against_the_fine_study(tmp_path, cli):
+    """A fine 0.08 m study at a held point, then the proposal with modules of
+    0.04 m: the law is the criterion's from the 0.04 m fine cubes (c_a = 0.1385
+    E[U_num/U_min], eps_p = mean peak / E), the errors are coarse over fine."""
+    hold = ["--hold", "rate_periods=3", "--hold", "bottom_lateral=free"]
+    r = cli("study", "seed-settings", "--out", str(tmp_path / "fine"), "--study", "--sizes", "0.08", "--seeds", "2",
+            "--loads", "uniform", "--threads", "1", *hold)
+    assert r.returncode == 0, r.stderr
+    r = cli("study", "seed-settings", "--out", str(tmp_path / "p"), "--proposal", str(tmp_path / "fine"),
+            "--sizes", "0.08", "--module", "0.04", "--seeds", "2", *hold)
+    assert r.returncode == 0, r.stderr
+    p = json.loads((tmp_path / "p" / "proposal.json").read_text())
+    assert p["law"]["c_a"] == pytest.approx(0.1385 * p["law"]["U_ratio_mean"], rel=1e-3)
+    assert p["law"]["eps_p"] == pytest.approx(p["law"]["peak_stress_MPa_mean"] * 1e6 / 3.5e10, rel=1e-3)
+    fine = [x for x in ldem.study.read_csv(str(tmp_path / "fine" / "cases.csv")) if x["load"] == "uniform"]
+    assert p["fine"]["peak"] == pytest.approx(np.mean([x["peak_stress_MPa"] for x in fine]), rel=1e-5)
+    assert p["errors"]["peak"] == pytest.approx(p["coarse"]["peak"] / p["fine"]["peak"] - 1, rel=1e-9)
+    assert "Coarse against fine: peak" in (tmp_path / "p" / "proposal.md").read_text()

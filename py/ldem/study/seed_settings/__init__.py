@@ -32,6 +32,7 @@ from ..settings import size_effect_tests
 from ..size_effect import run_size_effect
 from ..registry import Study, register
 from .fit import fit_overrides, fit_table, fit_variant, parse_grid, parse_point, run_fit
+from .proposal import proposal_table, run_proposal
 from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table
 from .variants import SETTINGS, SIZES, plan
 
@@ -83,6 +84,11 @@ def add_arguments(a) -> None:
                         "constant drive, rate_periods at each cube's own omega_1; a choice by its name, "
                         "bottom_lateral=free)")
     a.add_argument("--loads", default="uniform,triangular", help="--study: comma-separated loads")
+    a.add_argument("--proposal", default="", metavar="DIR",
+                   help="run no sensitivity study: the study's proposal for coarse meshes (the mesh study's "
+                        "criterion) with the --hold settings, modules of --module on the largest of --sizes, "
+                        "against the fine cubes of the --study run in DIR; writes proposal.md and proposal.json")
+    a.add_argument("--module", type=float, default=0.06, metavar="L", help="--proposal: the coarse module [m]")
     a.add_argument("--fit", action="append", default=[], metavar="NAME=V1,V2,...",
                    help="run no sensitivity study: fit this parameter (once or twice: at most two) on these values "
                         "to Table 3's five sizes (strain_rate and rate_periods: a constant drive); writes fit.csv, "
@@ -91,6 +97,12 @@ def add_arguments(a) -> None:
 
 def cmd_seed_settings(args) -> int:
     held = parse_point(args.hold)
+    if args.proposal:
+        r = run_proposal(held, args.proposal, args.out, module=args.module,
+                         size=max(parse_floats(args.sizes, "--sizes")), seeds=seed_count(args), jobs=args.jobs,
+                         threads=args.threads or 1)
+        print(proposal_table(r), end="")
+        return 0
     if args.study:
         run_fitted_study(held, parse_floats(args.sizes, "--sizes"), seed_count(args), parse_loads(args.loads),
                          args.out, args.jobs, args.threads, args.figure_format)

@@ -11,6 +11,7 @@ import numpy as np
 from ..cases import case_name
 from ..tables import REFERENCE_UNIFORM
 
+
 def run_rows(pairs, summaries: Dict[str, dict]) -> List[dict]:
     """A row per (variant, size, seed): the run's peak, its strain, its cost."""
     rows = []
@@ -18,9 +19,9 @@ def run_rows(pairs, summaries: Dict[str, dict]) -> List[dict]:
         s = summaries[case_name(t)]
         rows.append({"setting": v.setting, "variant": v.label, "size_m": t.size, "seed": t.seed,
                      "peak_stress_MPa": s["peak_stress_MPa"], "strain_at_peak": s["strain_at_peak"],
-                     "strain_rate": s["parameters"]["strain_rate"] if "parameters" in s else t.strain_rate,
-                     "energy_balance_error": s["energy_balance_error"], "steps": s.get("steps", ""),
-                     "wall_s": s.get("wall_s", ""), "case": case_name(t)})
+                     "strain_rate": s["parameters"]["strain_rate"], "damping_coefficient_1_s":
+                     s["damping_coefficient_1_s"], "energy_balance_error": s["energy_balance_error"],
+                     "steps": s["steps"], "wall_s": s["wall_s"], "case": case_name(t)})
     return rows
 
 
