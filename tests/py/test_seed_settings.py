@@ -13,6 +13,7 @@ from ldem.study.seed_settings import fit as F, tables as T, variants as V
 from ldem.study.registry import STUDIES
 
 
+@pytest.mark.direct
 def test_damping_omega_states_zeta_on_that_frequency():
     """D_f = 2 zeta damping_omega; 0 keeps D_f = 2 zeta omega_1."""
     own = ldem.CubeTest(size=0.04, zeta=0.02).simulation()
@@ -22,6 +23,7 @@ def test_damping_omega_states_zeta_on_that_frequency():
     assert other.omega1 == own.omega1  # the modal analysis is the specimen's, whatever zeta is stated on
 
 
+@pytest.mark.direct
 def test_a_lower_bound_of_G_f_holds_in_every_bar_and_keeps_the_mean():
     """Gf_min 4.5 N/m, above both families' brittle thresholds (4.0 and 3.4 N/m):
     no bar below it, none made perfectly brittle; the mean within 4 standard errors."""
@@ -34,6 +36,7 @@ def test_a_lower_bound_of_G_f_holds_in_every_bar_and_keeps_the_mean():
         ldem.CubeTest(size=0.04, Gf_min=100.0).params()
 
 
+@pytest.mark.direct
 def test_the_axial_mode_is_the_rayleigh_quotient_of_the_uniform_field():
     """omega_d = sqrt(3 E / rho) / H: at 0.96 m, 6,890 rad/s (c = 3,819 m/s)."""
     assert V.axial_omega(0.96) == pytest.approx(math.sqrt(3 * 3.5e10 / 2400) / 0.96, rel=1e-12)
@@ -48,6 +51,7 @@ def test_the_registry_lists_the_study_and_every_variant_is_a_valid_cube():
         t.params()
 
 
+@pytest.mark.direct
 def test_the_constant_drive_reaches_its_rate_by_an_eighth_of_eps_p():
     """Its smooth start lasts eps_p / (4 rate): the mean strain at its end, rate x ramp / 2, is eps_p / 8."""
     for rate in (0.01, 1.0):
@@ -90,6 +94,7 @@ def test_the_fit_recovers_a_lower_bound_it_was_given(tmp_path):
     assert min(far) > 1e-5  # the misfit sees the parameter: the grid's ends miss the targets
 
 
+@pytest.mark.direct
 def test_a_held_point_reads_choices_by_name_and_the_rate_by_each_cubes_periods():
     point = F.parse_point(["bottom_lateral=free", "rate_periods=3"])
     assert point == {"bottom_lateral": "free", "rate_periods": 3.0}
@@ -120,3 +125,19 @@ def test_the_proposal_runs_the_criterions_law_on_a_coarse_cube_against_the_fine_
     assert p["fine"]["peak"] == pytest.approx(np.mean([x["peak_stress_MPa"] for x in fine]), rel=1e-5)
     assert p["errors"]["peak"] == pytest.approx(p["coarse"]["peak"] / p["fine"]["peak"] - 1, rel=1e-9)
     assert "Coarse against fine: peak" in (tmp_path / "p" / "proposal.md").read_text()
+
+
+@pytest.mark.direct
+def test_a_fixed_upper_face_holds_every_upper_node_laterally():
+    """top_lateral fixed: every upper node's x and y are prescribed at zero
+    (weight 0) beside its driven z; free: only z is."""
+    for lateral, dims in (("fixed", {0, 1, 2}), ("free", {2})):
+        sim = ldem.CubeTest(size=0.06, top_lateral=lateral).simulation()
+        p = sim.prescribed_dofs()
+        z0 = np.asarray(sim.lattice.z0)
+        top = np.flatnonzero(np.isclose(z0, 0.06))
+        node, dim, weight = (np.asarray(p[k]) for k in ("node", "dim", "weight"))
+        at_top = np.isin(node, top)
+        for n in top:
+            assert set(dim[node == n]) == dims
+        assert np.all(weight[at_top & (dim != 2)] == 0) and np.all(weight[at_top & (dim == 2)] == 1)
