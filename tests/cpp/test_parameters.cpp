@@ -14,7 +14,7 @@ using namespace ldem;
 
 TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
     const auto& table = cubeTestParameters();
-    ASSERT_EQ(table.size(), 49u);  // 2 geometry + 12 material + 15 loading + 20 run
+    ASSERT_EQ(table.size(), 51u);  // 2 geometry + 13 material + 15 loading + 21 run
     std::set<std::string> names;
     const CubeTestParams defaults;
     for (const ParamInfo& p : table) {
