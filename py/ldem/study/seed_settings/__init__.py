@@ -36,6 +36,9 @@ from .proposal import proposal_table, run_proposal
 from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table
 from .variants import SETTINGS, SIZES, plan
 
+NAMES = [s for s in SETTINGS if s != "base"]  # the settings one may ask for; base is always run
+
+
 def run_seed_settings(settings: Sequence[str], sizes: Sequence[float], seeds: Sequence[int], out: str, jobs: int = 1,
                       threads: int = 0, fmt: str = "png", log: Callable[[str], None] = print) -> List[dict]:
     """Runs the unfinished cases; writes runs.csv, sensitivity.csv/.md and the figure; returns the sensitivity rows."""
@@ -69,9 +72,8 @@ def add_arguments(a) -> None:
                    help="comma-separated cube sizes [m]; the ratio is the largest's peak over the smallest's")
     add_seeds(a, "size and variant")
     a.set_defaults(seeds=3)
-    names = [s for s in SETTINGS if s != "base"]
-    a.add_argument("--settings", default=",".join(names),
-                   help="comma-separated settings, each a family of variants beside base, of: " + ", ".join(names))
+    a.add_argument("--settings", default=",".join(NAMES),
+                   help="comma-separated settings, each a family of variants beside base, of: " + ", ".join(NAMES))
     a.add_argument("--jobs", type=int, default=1, metavar="J", help="cases run at once in separate processes")
     parameter_option(a, "threads", note="; per case")
     a.add_argument("--figure-format", default="png", choices=("png", "pdf", "svg"), help="format of the figure")
@@ -116,8 +118,7 @@ def cmd_seed_settings(args) -> int:
                       held=held, log=lambda s: print(s, file=sys.stderr))
         print(fit_table(fit), end="")
         return 0
-    names = parse_names(args.settings, [s for s in SETTINGS if s != "base"], "setting",
-                        "some of " + ", ".join(s for s in SETTINGS if s != "base"))
+    names = parse_names(args.settings, NAMES, "setting", "some of " + ", ".join(NAMES))
     sizes = parse_floats(args.sizes, "--sizes")
     if len(sizes) < 2:
         raise ValueError("--sizes needs at least two sizes: the study compares the largest with the smallest")

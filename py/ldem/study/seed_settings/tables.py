@@ -4,6 +4,7 @@ peak to the smallest's, against base and against Table 3."""
 from __future__ import annotations
 
 import math
+import re
 from typing import Dict, List, Sequence
 
 import numpy as np
@@ -52,6 +53,11 @@ def sensitivity(rows: Sequence[dict]) -> List[dict]:
     return out
 
 
+def _sizes(row: dict) -> List[float]:
+    """The sizes of a sensitivity row, from its columns peak_<size>."""
+    return sorted(float(k[5:]) for k in row if re.fullmatch(r"peak_[0-9.]+", k))
+
+
 def table3_ratio(lo: float, hi: float) -> tuple:
     """Table 3's ratio of peaks and of strains at the peak, largest size over smallest."""
     (p0, e0), (p1, e1) = REFERENCE_UNIFORM[lo], REFERENCE_UNIFORM[hi]
@@ -59,8 +65,7 @@ def table3_ratio(lo: float, hi: float) -> tuple:
 
 
 def sensitivity_table(sens: Sequence[dict]) -> str:
-    sizes = sorted(float(k[5:]) for k in sens[0] if k.startswith("peak_") and not k.startswith("peak_se")
-                   and k != "peak_ratio" and not k.startswith("peak_ratio"))
+    sizes = _sizes(sens[0])
     lo, hi = sizes[0], sizes[-1]
     base = next(r for r in sens if r["setting"] == "base")
     head = "| setting | variant | " + " | ".join(f"peak {s:g} m [MPa] | strain at peak {s:g} m" for s in sizes)
@@ -86,7 +91,7 @@ def ratio_figure(sens: Sequence[dict], path: str, fmt: str = "png") -> str:
     """The ratio of the largest to the smallest size's mean peak per variant
     (bars: one standard error over the seeds), Table 3's as a line."""
     from ...plots import plt, save
-    sizes = sorted({float(k[5:]) for k in sens[0] if k.startswith("peak_0") or k.startswith("peak_1")})
+    sizes = _sizes(sens[0])
     lo, hi = sizes[0], sizes[-1]
     fig, ax = plt.subplots(figsize=(7.5, 0.32 * len(sens) + 1.4))
     y = np.arange(len(sens))[::-1]
