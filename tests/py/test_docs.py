@@ -14,7 +14,7 @@ import shlex
 
 import pytest
 
-from conftest import ROOT, run_cli
+from conftest import COMMIT_HASH, ROOT, run_cli
 from ldem import _core
 from ldem.study.registry import STUDIES
 
@@ -94,13 +94,12 @@ def test_every_link_resolves(page):
 
 
 ISSUE = re.compile(r"(?<![\w&])#\d+\b|\bissues?\s+#?\d+", re.I)
-HASH = re.compile(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*\d)[0-9a-f]{7,40}\b")
 
 
 def diary(text: str) -> list:
     """The issue numbers and commit hashes of a user's page (a link's own #anchor is not one)."""
     text = re.sub(r"\]\([^)\s]*\)", "]", text)
-    return ISSUE.findall(text) + HASH.findall(text)
+    return ISSUE.findall(text) + COMMIT_HASH.findall(text)
 
 
 @pytest.mark.parametrize("page", PAGES)

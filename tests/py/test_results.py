@@ -12,7 +12,7 @@ import xml.etree.ElementTree as ET
 
 import pytest
 
-from conftest import ROOT
+from conftest import COMMIT_HASH, ROOT
 from ldem.study.registry import STUDIES
 
 MAX_BINARY_BYTES = 10_000_000
@@ -88,7 +88,7 @@ def provenance(readme: str) -> dict:
 
 
 def commits(line: str) -> list:
-    return re.findall(r"\b(?=[0-9a-f]*[a-f])(?=[0-9a-f]*[0-9])[0-9a-f]{7,40}\b", line)
+    return COMMIT_HASH.findall(line)
 
 
 def study_folders() -> list:
