@@ -8,7 +8,7 @@
 // Between the load loss and separation the specimen is mostly chains straightening; what
 // loads them beyond their static share is the drag of the mass-proportional
 // damping (on absolute velocity) and inertia, both in proportion to the
-// drive's speed (results/separation/speedup_sweep.md). Past its load loss a
+// drive's speed (results/dynamics/speedup_sweep.md). Past its load loss a
 // specimen hangs from the drive on its chains (or a triangular cube on its
 // hinge), and the part above them moves with it (0.48 m, seed 2: the whole
 // cube, K = M v^2 / 2). The stress that the drive's own motion puts on that
@@ -29,7 +29,7 @@
 // t_q = t_r), it is that ramp, bit for bit. (Measured without it: the fixed
 // ramp to 20, a = 145 m/s^2 at every size, broke bars in the hanging
 // triangular cubes, +3.7 % of U_min at 0.48 m by mean strain 4e-3, +12 % at
-// 0.72 m, +22 % at 0.96 m; results/separation/study_in_an_hour.md.)
+// 0.72 m, +22 % at 0.96 m; results/archive/size-effect/study_in_an_hour.md.)
 //
 // From the end of the ramp on, U is state and its velocity factor S >= S_f
 // follows, record by record, a quasi-static criterion on state n:

@@ -6,7 +6,7 @@
 // down to a few per cent of the peak; the load loss (1 %) comes at 15 to 44 x
 // on the 0.48-0.96 m cubes, and the slow creep of the stress from a few per
 // cent to 1 % took 65 % of the triangular half's steps
-// (results/separation/study_hour/, issue 41).
+// (results/archive/size-effect/study_hour/, issue 41).
 // Before the peak, the peak so far is the latest record, so the rule cannot
 // hold on the rising branch.
 // Parameters: LDEM_PAST_PEAK_STOP_PARAMETERS (peak_stop_strain_ratio).
