@@ -75,7 +75,6 @@ def test_the_checks_see_a_binary_and_a_dangling_pvd(tmp_path):
 # commit(s) and the wall time; the side results; the archive of earlier runs.
 SIDE = {"dynamics", "yade-native"}  # no study's output (results/README.md, "Side results")
 VARIANTS = {"size-effect": {"seed-settings"}}  # the one named variant a study's folder may hold
-PENDING = {"seed-settings": "its README (in progress) names neither its commit nor its wall time yet"}
 ARCHIVE = os.path.join(ROOT, "results", "archive")
 
 
@@ -102,13 +101,7 @@ def test_every_folder_of_results_is_a_study_a_side_result_or_the_archive():
     assert os.path.isdir(ARCHIVE) and os.path.isfile(os.path.join(ROOT, "results", "HISTORY.md"))
 
 
-def _pending(name):
-    """A study's name, marked when its README is known not to say where it comes from yet (strict: once
-    it does, the mark must go)."""
-    return pytest.param(name, marks=pytest.mark.xfail(strict=True, reason=PENDING[name])) if name in PENDING else name
-
-
-@pytest.mark.parametrize("name", [_pending(n) for n in study_folders()])
+@pytest.mark.parametrize("name", study_folders())
 def test_a_current_result_says_where_it_comes_from(name):
     readme = os.path.join(ROOT, "results", name, "README.md")
     p = provenance(readme)
@@ -133,7 +126,7 @@ def _on_main(commit: str) -> bool:
                           capture_output=True).returncode == 0
 
 
-@pytest.mark.parametrize("name", [n for n in study_folders() if n not in PENDING])
+@pytest.mark.parametrize("name", study_folders())
 def test_the_commits_a_current_result_names_are_on_main(name):
     git = subprocess.run(["git", "-C", ROOT, "rev-parse", "--is-shallow-repository"], capture_output=True, text=True)
     if git.returncode != 0 or git.stdout.strip() != "false":
