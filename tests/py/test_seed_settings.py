@@ -141,3 +141,23 @@ def test_a_fixed_upper_face_holds_every_upper_node_laterally():
         for n in top:
             assert set(dim[node == n]) == dims
         assert np.all(weight[at_top & (dim != 2)] == 0) and np.all(weight[at_top & (dim == 2)] == 1)
+
+
+@pytest.mark.direct
+def test_the_comparison_sets_each_column_beside_the_reference_and_table_3():
+    def row(load, size, peak, u):
+        return {"load": load, "size_m": size, "peak_stress_MPa_mean": peak, "strain_at_peak_mean": 1.5e-4,
+                "U_ratio_mean": u, "U_ratio_cv": 0.05, "separation_strain_mean": "" if load != "uniform" else 0.06}
+    ref = [row("uniform", 0.12, 2.0, 1.0), row("triangular", 0.12, 1.5, "")]
+    new = [row("uniform", 0.12, 2.1, 2.3), row("triangular", 0.12, 1.6, "")]
+    text = T.study_comparison(ref, new, 2.14, 2.5)
+    assert "| 0.12 | 2.000 / 2.100, 2.450 | 1.500e-04 / 1.500e-04, 1.470e-04 | 1.000 / 2.300 |" in text
+    assert "| 0.12 | 1.500 / 1.600 | 1.500e-04 / 1.500e-04 |" in text  # triangular: no Table 3, no energy
+    assert text.rstrip().endswith("reference 2.140, these settings 2.500.")
+
+
+def test_a_missing_reference_is_refused_before_any_case_runs(tmp_path, cli):
+    r = cli("study", "seed-settings", "--out", str(tmp_path / "s"), "--study", "--sizes", "0.08", "--seeds", "1",
+            "--reference", str(tmp_path / "nowhere"))
+    assert r.returncode == 2 and "no summary.csv" in r.stderr and len(r.stderr.strip().splitlines()) == 1, r.stderr
+    assert not (tmp_path / "s" / "cases").exists()

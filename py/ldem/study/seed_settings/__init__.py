@@ -19,6 +19,7 @@ and ratio.png (that ratio against each variant, beside Table 3's)."""
 from __future__ import annotations
 
 import dataclasses
+import json
 import os
 import sys
 from typing import Callable, List, Sequence
@@ -33,7 +34,7 @@ from ..size_effect import run_size_effect
 from ..registry import Study, register
 from .fit import fit_overrides, fit_table, fit_variant, parse_grid, parse_point, run_fit
 from .proposal import proposal_table, run_proposal
-from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table
+from .tables import ratio_figure, run_rows, sensitivity, sensitivity_table, study_comparison
 from .variants import SETTINGS, SIZES, plan
 
 NAMES = [s for s in SETTINGS if s != "base"]  # the settings one may ask for; base is always run
@@ -65,6 +66,18 @@ def run_fitted_study(point: dict, sizes: Sequence[float], seeds: int, loads: Seq
     return run_size_effect(tests, out, jobs=jobs, progress=False, figure_format=fmt)
 
 
+def write_comparison(reference: str, out: str) -> str:
+    """comparison.md in out: the study there against the one in reference (each folder's summary.csv and
+    fractal.json, as ldem study size-effect writes them)."""
+    def d(folder):
+        with open(os.path.join(folder, "fractal.json")) as f:
+            return json.load(f)["uniform"]["d"]
+    text = study_comparison(io.read_table(os.path.join(reference, "summary.csv")),
+                            io.read_table(os.path.join(out, "summary.csv")), d(reference), d(out))
+    io.write_text(os.path.join(out, "comparison.md"), text)
+    return text
+
+
 def add_arguments(a) -> None:
     a.add_argument("--out", required=True, metavar="DIR",
                    help="study folder (cases/, runs.csv, sensitivity.csv, sensitivity.md, ratio.png)")
@@ -86,6 +99,9 @@ def add_arguments(a) -> None:
                         "constant drive, rate_periods at each cube's own omega_1; a choice by its name, "
                         "bottom_lateral=free)")
     a.add_argument("--loads", default="uniform,triangular", help="--study: comma-separated loads")
+    a.add_argument("--reference", default="", metavar="DIR",
+                   help="--study: a size-effect study's folder (its summary.csv and fractal.json, e.g. "
+                        "results/size-effect) to set beside this one, table by table, in comparison.md")
     a.add_argument("--proposal", default="", metavar="DIR",
                    help="run no sensitivity study: the study's proposal for coarse meshes (the mesh study's "
                         "criterion) with the --hold settings, modules of --module on the largest of --sizes, "
@@ -106,8 +122,12 @@ def cmd_seed_settings(args) -> int:
         print(proposal_table(r), end="")
         return 0
     if args.study:
+        if args.reference and not os.path.isfile(os.path.join(args.reference, "summary.csv")):
+            raise ValueError(f"--reference {args.reference}: no summary.csv there (a size-effect study's folder)")
         run_fitted_study(held, parse_floats(args.sizes, "--sizes"), seed_count(args), parse_loads(args.loads),
                          args.out, args.jobs, args.threads, args.figure_format)
+        if args.reference:
+            print(write_comparison(args.reference, args.out), end="")
         return 0
     if args.fit:
         grid = parse_grid(args.fit)

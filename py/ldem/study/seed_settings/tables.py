@@ -107,3 +107,41 @@ def ratio_figure(sens: Sequence[dict], path: str, fmt: str = "png") -> str:
     return f"{path}.{fmt}"
 
 
+
+
+# The columns of the size-effect study's summary.csv a comparison sets side by side: (heading, column, format).
+COMPARED = (("peak [MPa]", "peak_stress_MPa_mean", "{:.3f}"), ("strain at peak", "strain_at_peak_mean", "{:.3e}"),
+            ("U_num/U_min", "U_ratio_mean", "{:.3f}"), ("its CV", "U_ratio_cv", "{:.3f}"),
+            ("strain at separation", "separation_strain_mean", "{:.3g}"))
+
+
+def _cell(row: dict, column: str, fmt: str) -> str:
+    v = row.get(column, "") if row else ""
+    return "-" if v in ("", None) or (isinstance(v, float) and math.isnan(v)) else fmt.format(float(v))
+
+
+def study_comparison(reference: Sequence[dict], rows: Sequence[dict], ref_d: float, d: float) -> str:
+    """Markdown: each load's table of two size-effect studies' summary rows (a
+    reference, the quasi-static defaults, and one at other settings), column by
+    column, Table 3 beside the uniform peaks and strains, then each one's d."""
+    ref = {(r["load"], float(r["size_m"])): r for r in reference}
+    lines = []
+    for load in dict.fromkeys(r["load"] for r in rows):
+        heads = [h for h, _, _ in COMPARED if load == "uniform" or h in ("peak [MPa]", "strain at peak")]
+        lines += [f"**{load}** (each cell: reference / these settings" + (", Table 3" if load == "uniform" else "")
+                  + ")", "", "| size [m] | " + " | ".join(heads) + " |", "|---" * (len(heads) + 1) + "|"]
+        for r in (r for r in rows if r["load"] == load):
+            size = float(r["size_m"])
+            t3 = REFERENCE_UNIFORM.get(round(size, 6)) if load == "uniform" else None
+            cells = []
+            for h, col, fmt in COMPARED:
+                if h not in heads:
+                    continue
+                cell = f"{_cell(ref.get((load, size)), col, fmt)} / {_cell(r, col, fmt)}"
+                if t3 and h in ("peak [MPa]", "strain at peak"):
+                    cell += f", {fmt.format(t3[0] if h.startswith('peak') else t3[1])}"
+                cells.append(cell)
+            lines.append(f"| {size:g} | " + " | ".join(cells) + " |")
+        lines.append("")
+    lines.append(f"The fractal law's d (uniform): reference {ref_d:.3f}, these settings {d:.3f}.")
+    return "\n".join(lines) + "\n"
