@@ -57,15 +57,17 @@ def bar_count(mask: np.ndarray) -> int:
 def needed(shape: dict, L0: float) -> Optional[dict]:
     """None when the shape at module L0 meets the rule; else what, length,
     modules (its count now), k, L0 (L0 / k, the coarsest that meets it) and
-    bars (at that module)."""
+    bars (at that module; None: more than this machine holds)."""
     what, length = governing_length(shape)
     modules = length / L0
     if modules >= RULE_MODULES - 1e-9:
         return None
     k = math.ceil(RULE_MODULES / modules - 1e-9)
-    finer = dict(shape, L0=L0 / k)
-    return {"what": what, "length": length, "modules": modules, "k": k, "L0": L0 / k,
-            "bars": bar_count(module_mask(finer)[2])}
+    try:
+        bars = bar_count(module_mask(dict(shape, L0=L0 / k))[2])
+    except ValueError:  # the finer lattice would not fit this machine (shapes.module_mask's estimate)
+        bars = None
+    return {"what": what, "length": length, "modules": modules, "k": k, "L0": L0 / k, "bars": bars}
 
 
 def warning(shape: dict, L0: float, bars: int) -> str:
@@ -75,4 +77,6 @@ def warning(shape: dict, L0: float, bars: int) -> str:
         return ""
     return (f"the {n['what']} is {n['modules']:.3g} modules of L0 = {L0 * 1e3:g} mm, fewer than the module rule's "
             f"{RULE_MODULES}{' (provisional)' * RULE_PROVISIONAL}: the peak may depend on the module; L0 = "
-            f"{n['L0'] * 1e3:.4g} mm (L0 / {n['k']}) meets it, at {n['bars']:,} bars (now {bars:,})")
+            f"{n['L0'] * 1e3:.4g} mm (L0 / {n['k']}) meets it, at "
+            + (f"{n['bars']:,} bars" if n["bars"] is not None else "more bars than this machine holds")
+            + f" (now {bars:,})")

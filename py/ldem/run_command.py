@@ -279,7 +279,8 @@ def cmd_run(args) -> int:
     if _kept(args, test, restart):
         return 0
     warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
-    warn_module(args.command, test)
+    if not args.restart:  # said when the run started
+        warn_module(args.command, test)
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
                       checkpoint_every=args.checkpoint_every, restart=args.restart, **_continuation(args))

@@ -121,7 +121,7 @@ def test_the_bar_count_is_the_lattice_s():
     assert module_rule.bar_count(beam.build.mask) == beam.simulation().total_bars == 24995
 
 
-def test_the_rule_warns_of_a_coarse_notched_beam_and_not_of_a_fine_one(cli, tmp_path, capsys):
+def test_the_rule_warns_of_a_coarse_notched_beam_and_not_of_a_fine_one(cli, tmp_path, capsys, monkeypatch):
     """examples/beam_3pb.toml has 8 modules over its ligament (80 mm at 10 mm):
     `ldem run` says the rule's 10 need L0 = 5 mm and its bars; at L0 = 5 mm (16
     modules) and unnotched at 10 mm (10 over the depth) nothing is said."""
@@ -133,6 +133,10 @@ def test_the_rule_warns_of_a_coarse_notched_beam_and_not_of_a_fine_one(cli, tmp_
     for test in (_beam(0.005), _beam(notch=0.0)):
         warn_module("run", test)
     assert capsys.readouterr().err == ""
+    with monkeypatch.context() as m:  # a finer lattice beyond this machine is said, not an error
+        m.setattr(module_rule, "module_mask", lambda shape: (_ for _ in ()).throw(ValueError("too big")))
+        warn_module("run", _beam())
+    assert "L0 = 5 mm (L0 / 2) meets it, at more bars than this machine holds (now 24,995)" in capsys.readouterr().err
     r = cli("run", os.path.join(ROOT, "examples", "beam_3pb.toml"), "--threads", "1", "--no-plots", "--no-progress",
             "--set", "final_strain=2e-5", "--out", str(tmp_path / "o"))
     assert r.returncode == 0, r.stderr
@@ -169,13 +173,14 @@ def test_the_convergence_plan_counts_its_modules(tmp_path):
 
 def test_a_band_of_the_smallest_validation_specimen(tmp_path, monkeypatch, cli):
     """The L-panel at L0 = 25 mm (20 x 4 x 20 modules less a quadrant), 1 m/s
-    to 1 mm: its prediction (two seeds), then its band of five points (the
+    to 0.5 mm: its prediction (two seeds), then its band of five points (the
     command line asks for 12 at least): each point calibrated to its drawn
     E and f_t, run with its own seed; the band's files, its peak's band about
     the prediction's mean with shares that add up; run again, nothing is."""
     b = validation.SPECIMENS["l_panel"]
     text = open(os.path.join(ROOT, b.file)).read()
-    for old, new in (("L0 = 0.01\n", "L0 = 0.025\n"), ("rate_periods = 12 ", "strain_rate = 1.0 ")):
+    for old, new in (("L0 = 0.01\n", "L0 = 0.025\n"), ("rate_periods = 12 ", "strain_rate = 1.0 "),
+                     ("final_strain = 0.002 ", "final_strain = 0.001 ")):
         assert text.count(old) == 1, old
         text = text.replace(old, new)
     (tmp_path / "coarse.toml").write_text(text)
@@ -202,3 +207,6 @@ def test_a_band_of_the_smallest_validation_specimen(tmp_path, monkeypatch, cli):
     assert validation.predict_band(ROOT, "l_panel", out, points=5, log=lambda s: None) == text
     r = cli("study", "validation", "l_panel", "--band", "--points", "11", "--out", out)
     assert r.returncode == 2 and "the band's design has at least 12 points" in r.stderr
+    r = cli("study", "validation", "l_panel", "--band", "--out", str(tmp_path / "none"))
+    assert r.returncode == 2 and r.stderr.strip().endswith("none: no predictions.csv: the prediction comes first "
+                                                          f"(ldem study validation NAME --out {tmp_path / 'none'})")

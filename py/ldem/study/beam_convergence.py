@@ -130,12 +130,13 @@ def report(out: str, tests: Sequence[WholeCurve], fit: str) -> str:
                      f"{q['vs_finest']:+.1%} | {'yes' if q['past_peak'] else 'NO'} | {q['steps']:,.0f} | "
                      f"{q['wall_s']:.0f} |")
     lines += ["", f"The rule, the fewest modules over the ligament (or the depth) with every beam's peak within "
-                  f"{WITHIN:.0%} of its finest module's:", ""]
+                  f"{WITHIN * 100:g} % of its finest module's:", ""]
     for beam, b in r["per_beam"].items():
         lines.append(f"- {beam}: {b['modules']:.3g} modules" + (" (only its finest module: not shown converged)"
                                                                   if b["only_finest"] else ""))
     lines += ["", f"**At least {r['modules']:.3g} modules** (ldem.module_rule.RULE_MODULES is {RULE_MODULES}, "
-                  "provisional until this table).", ""]
+                  "provisional until this table)." if r["per_beam"] else "No beam has two modules finished yet: "
+              "no rule.", ""]
     text = "\n".join(lines)
     io.write_text(os.path.join(out, "convergence.md"), text)
     return text

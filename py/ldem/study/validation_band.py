@@ -84,6 +84,9 @@ def inputs(lab: dict, scatter: Dict[str, tuple] = None) -> List[Scatter]:
 
 def committed_curves(out: str) -> tuple:
     """(predictions.csv's row, [(x, load [kN]) of each seed], the seeds) of the committed prediction in out."""
+    for name in ("predictions.csv", "curves.csv"):
+        if not os.path.isfile(os.path.join(out, name)):
+            raise ValueError(f"{out}: no {name}: the prediction comes first (ldem study validation NAME --out {out})")
     row = io.read_table(os.path.join(out, "predictions.csv"))[0]
     table = io.read_table(os.path.join(out, "curves.csv"))
     seeds = sorted(int(k[len("x_s"):]) for k in table[0] if k.startswith("x_s"))
