@@ -81,6 +81,14 @@ def warn_brittle(command: str, material, L0: float) -> None:
         print(f"ldem {command}: warning: {why}", file=sys.stderr)
 
 
+def warn_module(command: str, test) -> None:
+    """The warning when a specimen file is coarser than the module rule (ldem.module_rule)."""
+    from .module_rule import bar_count, warning
+
+    if (why := warning(test.description["shape"], test.build.L0, bar_count(test.build.mask))):
+        print(f"ldem {command}: warning: {why}", file=sys.stderr)
+
+
 def _parameters_in(out: str, extend: bool) -> dict:
     """The parameters of the run in folder out: of its checkpoint, or with extend of its final state."""
     from .io import CHECKPOINT, FINAL_STATE, read_checkpoint, read_summary
@@ -271,6 +279,8 @@ def cmd_run(args) -> int:
     if _kept(args, test, restart):
         return 0
     warn_brittle(args.command, test.build.cpp_params().material, test.build.L0)
+    if not args.restart:  # said when the run started
+        warn_module(args.command, test)
     result = run_cube(test, out=args.out, progress=False if args.no_progress else None, plots=not args.no_plots,
                       figure_format=args.figure_format, snapshots=_snapshots(args),
                       checkpoint_every=args.checkpoint_every, restart=args.restart, **_continuation(args))

@@ -12,6 +12,7 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
     ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
     ldem study beams transfer [--on D50_n0,...] [--predict ...] [--L0 M] [--seeds 6] [--jobs J]   OUT/transfer/
+    ldem study beams convergence [--seeds 3] [--jobs J] [--beams ...] [--L0 ...]   OUT/convergence/ (beam_convergence)
 
 Cases are resumed and run side by side as every study's (J at a time, one
 thread each); a finished case is not run again."""
@@ -20,6 +21,8 @@ from __future__ import annotations
 import json
 import os
 
+from .beam_convergence import (PLAN as CONVERGENCE_PLAN, SEEDS as CONVERGENCE_SEEDS, plan as convergence_plan,
+                               run as run_convergence)
 from .beam_comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
 from .beam_diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
 from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
@@ -152,6 +155,22 @@ def transfer(args) -> None:
     print(transfer_report(args.out, data, on, seed_count(args), predict))
 
 
+def convergence(args) -> None:
+    """The peak against the module (beam_convergence), at the concrete fitted on D50_n0.5 (--fit)."""
+    fit = args.fit or os.path.join(os.path.dirname(os.path.abspath(args.out)), "transfer", "on_D50_n0.5", "fit.json")
+    if not os.path.isfile(fit):
+        raise ValueError(f"{fit} not found (the fit of `ldem study beams transfer --on D50_n0.5`)")
+    beams = parse_names(args.beams, [beam_name(*b) for b in CONVERGENCE_PLAN], "beam", "D50_n0.5, D50_n0, D100_n0.2")
+    try:
+        modules = [float(v) * 1e-3 for v in args.L0s.split(",") if v.strip()]
+    except ValueError:
+        raise ValueError(f"--L0 takes comma-separated modules in mm (got '{args.L0s}')") from None
+    which = convergence_plan(beams, modules)
+    if not which:
+        raise ValueError(f"--beams {args.beams} --L0 {args.L0s}: no run of the plan (ldem.study.beam_convergence.PLAN)")
+    print(run_convergence(args.out, fit, args.data or default_data(args.out), seed_count(args), args.jobs, which))
+
+
 def _jobs(p, note: str = "") -> None:
     p.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each" + note)
 
@@ -215,6 +234,17 @@ def add_arguments(b) -> None:
     add_seeds(t, "predicted beam")
     _jobs(t)
     _data(t)
+    c = command("convergence", convergence, "the peak against the module L0, the concrete fitted on "
+                                            "D50_n0.5 at 5 mm: OUT/convergence.md|csv, the module rule",
+                os.path.join(OUT, "convergence"))
+    c.add_argument("--beams", default="", help="comma-separated, of D50_n0.5, D50_n0, D100_n0.2 (default: all)")
+    c.add_argument("--L0", dest="L0s", default="", metavar="MM", help="comma-separated modules [mm] of the plan "
+                   "(default: all: 5, 2.5 and 1.667 at D = 50 mm, 5 and 2.5 at D = 100 mm)")
+    c.add_argument("--fit", default="", metavar="FIT.json", help="the concrete (default: "
+                   "../transfer/on_D50_n0.5/fit.json beside OUT)")
+    c.add_argument("--seeds", type=int, default=CONVERGENCE_SEEDS, help="specimens per beam and module")
+    _jobs(c)
+    _data(c)
 
 
 def cmd_beams(args) -> int:

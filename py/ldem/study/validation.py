@@ -7,7 +7,7 @@ and the crack pictures, written before any measurement is seen.
 OUT/material.json: the calibration; OUT/cases/s{seed}/: the runs (seed 1 with
 its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's).
 
-    ldem study validation NAME [--calibrate-only | --whole-curve] [--seeds 6] [--jobs J] [--out OUT] [--root .]
+    ldem study validation NAME [--calibrate-only | --whole-curve | --band] [--seeds 6] [--jobs J] [--out OUT] [--root .]
 
 NAME: l_panel (Winkler et al. 2001), eccentric_notch_beam (García-Álvarez et
 al. 2012), malvar_warren_s1 or _s2 (Malvar and Warren 1988, from f_c alone;
@@ -15,7 +15,8 @@ with _weight: lying on the supports under gravity); OUT:
 ROOT/results/validation/NAME. Finished cases are not run again. --whole-curve
 runs nothing: OUT/whole_curve.md|png, the committed prediction's curve
 quantities (issue 39 item 2) at multiples of its own opening at the peak, the
-measured column left empty (the measurements stay out of the repository)."""
+measured column left empty (the measurements stay out of the repository).
+--band [--points 12]: the committed prediction's input band, OUT/band/ (validation_band)."""
 from __future__ import annotations
 
 import json
@@ -35,6 +36,8 @@ from .curve_report import figure as curve_figure, summarize, table_lines
 from .beams import PastThePeak
 from .cases import Named
 from .executors import run_cases
+from .validation_band import (MIN_POINTS, calibrate_points, committed_curves, inputs as band_inputs, point_design,
+                              point_seeds, report as band_report)
 from .options import add_seeds, seed_count
 from .registry import Study, register
 from .tables import mean_cv
@@ -54,6 +57,7 @@ class Blind:
     gravity: float = 0.0  # [m/s^2]: the specimen lies on its supports under its own weight
     from_elastic_zero: bool = False  # x from where the elastic line crosses zero load (elastic_zero)
     calibration: str = ""  # the entry whose material.json this one uses (the same concrete)
+    scatter: Dict[str, tuple] = field(default_factory=dict)  # a source's own scatter: {E|f_t|G_F: (cv, source)}
 
 
 SPECIMENS = {
@@ -152,15 +156,9 @@ def write_prediction(out: str, name: str, seeds: int, weight: float = 0.0) -> di
     b = SPECIMENS[name]
     peaks, curves, at, zeros = [], {}, [], []
     for seed in range(1, seeds + 1):
-        case = os.path.join(out, "cases", f"s{seed}")
-        s = io.read_summary(os.path.join(case, io.tables.SUMMARY))
-        c = io.read_curve(os.path.join(case, io.tables.CURVE))
-        load = np.asarray(c["stress_MPa"]) * 1e3 - weight * 1e-3  # F [MN] -> kN
-        x = np.asarray(c[b.x]) * b.x_scale
-        if b.from_elastic_zero:
-            zeros.append(elastic_zero(x, load))
-            x = x - zeros[-1]
-        peaks.append(s["peak_stress_MPa"] * 1e3 - weight * 1e-3)
+        x, load, peak, zero = read_case(os.path.join(out, "cases", f"s{seed}"), b, weight)
+        zeros += [zero] if b.from_elastic_zero else []
+        peaks.append(peak)
         at.append(float(x[int(np.argmax(load))]))
         curves[f"x_s{seed}"], curves[f"load_kN_s{seed}"] = x, load
     mean, cv = mean_cv(peaks)
@@ -173,36 +171,72 @@ def write_prediction(out: str, name: str, seeds: int, weight: float = 0.0) -> di
     io.write_table(os.path.join(out, "curves.csv"),
                    [{k: (f"{v[i]:.6g}" if i < len(v) else "") for k, v in curves.items()} for i in range(n)],
                    list(curves))
-    _figure(out, name, curves, seeds, b.x_label)
+    _figure(out, name, [(curves[f"x_s{s}"], curves[f"load_kN_s{s}"]) for s in range(1, seeds + 1)], b.x_label)
     cracks = os.path.join(out, "cases", "s1", "cracks.png")
     if os.path.exists(cracks):
         shutil.copyfile(cracks, os.path.join(out, "cracks.png"))
     return row
 
 
-def _figure(out: str, name: str, curves: dict, seeds: int, x_label: str) -> None:
+def read_case(case: str, b: Blind, weight: float = 0.0) -> tuple:
+    """(x, load [kN], peak [kN], x's zero) of a finished case as the prediction reads it: the load less the
+    weight [N], x from the elastic line's zero if from_elastic_zero (zero 0 else)."""
+    s = io.read_summary(os.path.join(case, io.tables.SUMMARY))
+    c = io.read_curve(os.path.join(case, io.tables.CURVE))
+    load = np.asarray(c["stress_MPa"]) * 1e3 - weight * 1e-3  # F [MN] -> kN
+    x = np.asarray(c[b.x]) * b.x_scale
+    zero = elastic_zero(x, load) if b.from_elastic_zero else 0.0
+    return x - zero, load, s["peak_stress_MPa"] * 1e3 - weight * 1e-3, zero
+
+
+def _figure(out: str, name: str, curves: list, x_label: str, band=None, file: str = "curves.png") -> None:
+    """The seeds' curves [(x, load)]; with band ({x, low, high} along the curve, and peak: a
+    bands.band), its 5-95 % shaded and the peak's as a bar at the mean opening there."""
     from .. import plots
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6, 4))
-    for seed in range(1, seeds + 1):
-        ax.plot(curves[f"x_s{seed}"], curves[f"load_kN_s{seed}"], lw=1, label=f"seed {seed}")
+    if band is not None:
+        ax.fill_between(band["x"], band["low"], band["high"], color="0.82", lw=0, label="5-95 %: inputs and seeds")
+        p = band["peak"]
+        ax.errorbar([band["x_at_peak"]], [p["mean"]], yerr=[[p["mean"] - p["low"]], [p["high"] - p["mean"]]],
+                    fmt="ko", ms=4, capsize=4, label="peak, 5-95 %")
+    for seed, (x, load) in enumerate(curves, 1):
+        ax.plot(x, load, lw=1, label=f"seed {seed}")
     ax.set_xlabel(x_label)
     ax.set_ylabel("load [kN]")
-    ax.set_title(f"{name}: blind prediction, {seeds} specimens")
+    ax.set_title(f"{name}: blind prediction, {len(curves)} specimens" + ", its input band" * (band is not None))
     ax.legend(fontsize=8)
-    plots.save(fig, os.path.join(out, "curves.png"))
+    plots.save(fig, os.path.join(out, file))
+
+
+def predict_band(root: str, name: str, out: str, points: int = MIN_POINTS, jobs: int = 1,
+                 log: Callable[[str], None] = print) -> str:
+    """The committed prediction's input band (ldem.study.validation_band): the
+    points calibrated and run (those not done yet), OUT/band/band.md|csv|png."""
+    b, folder = SPECIMENS[name], os.path.join(out, "band")
+    concrete = SPECIMENS[b.calibration or name]  # under its weight: its concrete's calibrations, beside OUT
+    home = os.path.join(os.path.dirname(os.path.abspath(out)), b.calibration) if b.calibration else out
+    path = os.path.join(root, b.file)
+    row, seed_curves, _ = committed_curves(out)
+    L0 = SpecimenTest.from_file(path).build.L0
+    drawn = band_inputs(concrete.lab, concrete.scatter)
+    x = point_design(folder, drawn, points)
+    calibrations = calibrate_points(os.path.join(home, "band", "calibration"), drawn, x, concrete.lab,
+                                                    L0, jobs, log)
+    seeds = point_seeds(points)
+    runs = run_cases([Stopped(path, c["material"], s, b) for c, s in zip(calibrations, seeds)], folder, jobs=jobs,
+                     log=log)
+    weight = float(row.get("weight_kN") or 0.0) * 1e3
+    curves = [read_case(os.path.join(folder, "cases", f"s{s}"), b, weight)[:2] for s in seeds]
+    return band_report(folder, name, drawn, x, curves, seed_curves, float(row["x_at_peak"]), b.x_label,
+                                  calibrations, runs, L0, lambda band: _figure(folder, name, seed_curves, b.x_label,
+                                                                               band, "band.png"))
 
 
 def whole_curve(out: str, name: str) -> str:
     """OUT/whole_curve.md and .png from the committed predictions.csv and curves.csv."""
-    row = io.read_table(os.path.join(out, "predictions.csv"))[0]
-    table = io.read_table(os.path.join(out, "curves.csv"))
-    seeds = sorted(int(k[len("x_s"):]) for k in table[0] if k.startswith("x_s"))
-    curves = []
-    for s in seeds:
-        points = [(float(r[f"x_s{s}"]), float(r[f"load_kN_s{s}"])) for r in table if r[f"x_s{s}"] != ""]
-        curves.append(tuple(np.array(c) for c in zip(*points)))
+    row, curves, seeds = committed_curves(out)
     x_ref, label = float(row["x_at_peak"]), row["x_label"]
     unit = label[label.rfind("[") + 1:label.rfind("]")]
     curve_figure(os.path.join(out, "whole_curve.png"), f"{name}: blind prediction", curves, x_ref, label)
@@ -235,6 +269,10 @@ def add_arguments(v) -> None:
     only.add_argument("--calibrate-only", action="store_true", help="OUT/material.json only: run no specimen")
     only.add_argument("--whole-curve", action="store_true", help="run nothing: OUT/whole_curve.md|png from the "
                                                               "committed prediction")
+    only.add_argument("--band", action="store_true", help="the committed prediction's 5-95 %% band over the inputs "
+                                                        "not measured and the seeds: OUT/band/ (runs --points "
+                                                        "calibrations and runs)")
+    v.add_argument("--points", type=int, default=MIN_POINTS, help="--band: the Latin hypercube's points, one run each")
     add_seeds(v, "prediction")
     v.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each")
     v.add_argument("--root", default=".", metavar="DIR", help="the repository, whose examples/ hold the files")
@@ -249,6 +287,10 @@ def cmd_validation(args) -> int:
         material(args.root, args.name, out, log)
     elif args.whole_curve:
         print(whole_curve(out, args.name))
+    elif args.band:
+        if args.points < MIN_POINTS:
+            raise ValueError(f"--points {args.points}: the band's design has at least {MIN_POINTS} points")
+        print(predict_band(args.root, args.name, out, args.points, args.jobs, log))
     else:
         print(predict(args.root, args.name, out, seed_count(args), args.jobs, log))
     return 0
