@@ -15,7 +15,7 @@ from ldem.study import beams
 
 PREDICTION = os.path.join(ROOT, "results", "beams", "gregoire2013")
 COMMANDS = ["calibrate", "predict", "uniform", "curves", "compare", "size-effect", "diagnose", "calibrated",
-            "whole-curves", "transfer"]
+            "whole-curves", "transfer", "convergence"]
 
 
 def _rows(path):
