@@ -16,7 +16,7 @@ from .rerun import RERUN_SKIPS, cmd_rerun  # noqa: F401 (RERUN_SKIPS: the fields
 from .cube import CubeTest
 from .helptext import HelpFormatter, add_parameter_option
 from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
-from .signals import Terminated, terminate_on_sigterm
+from .signals import Terminated, raise_on_signals
 
 
 CUBE_FIELDS = {f.name: f for f in dataclasses.fields(CubeTest)}
@@ -82,7 +82,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     from . import _core
 
-    terminate_on_sigterm()
+    raise_on_signals()  # the command's work starts: a signal is heard where it is, and its files say what is kept
     # Under mpirun, rank 0 speaks for all (read from mpirun's environment: MPI
     # itself starts only when a lattice is split, so `ldem bench` leaves it to ldem-bench).
     rank = int(os.environ.get("OMPI_COMM_WORLD_RANK") or os.environ.get("PMIX_RANK") or 0)
@@ -106,14 +106,13 @@ def main(argv=None) -> int:
         print(f"ldem {args.command}: failed: {where}: {e.strerror or e} (summary.json does not say done)",
               file=sys.stderr)
         return EXIT_FAILED
-    except KeyboardInterrupt as e:
+    except (KeyboardInterrupt, RuntimeError) as e:
+        # A signal while a class is made (in an import done where it is needed: matplotlib's where pictures
+        # are drawn) comes wrapped in Python 3.11's RuntimeError "Error calling __set_name__".
+        e = e if isinstance(e, KeyboardInterrupt) else e.__cause__
+        if not isinstance(e, KeyboardInterrupt):
+            raise
         how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
         print(f"ldem {args.command}: {how}: {what_is_kept(args)}{how_to_continue(args)}",
               file=sys.stderr)
         return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)
-
-
-def console() -> None:
-    """The `ldem` command of a pip installation (py/bin/ldem for the others)."""
-    sys.exit(main())
-

@@ -1,12 +1,15 @@
 """SIGTERM and Ctrl-C: heard in every phase of a run within a fraction of a
 second (the core's loops poll Python's handlers, pkg/ldem/Interrupt.hpp),
-and a run stopped where its files say what they hold: at a record (the curve
+from the command's first instant (exit_while_starting, before numpy, the core
+and matplotlib load), and a run stopped where its files say what they hold: at a record (the curve
 has its row, checkpoint.npz is of that record) or, between records far from
 the next one, at once (the curve keeps the rows to the last record; an older
 checkpoint stays what it was)."""
 from __future__ import annotations
 
+import os
 import signal
+import sys
 import threading
 import time
 
@@ -19,8 +22,33 @@ def _terminate(signum, frame):
     raise Terminated()
 
 
-def terminate_on_sigterm() -> None:
-    """SIGTERM raises Terminated (in the main thread): `ldem` and a study's worker processes."""
+def _how(signum) -> str:
+    return "terminated (SIGTERM)" if signum == signal.SIGTERM else "interrupted"
+
+
+def _exit_at_once(signum, frame):
+    command = " ".join(["ldem"] + sys.argv[1:2] if sys.argv[1:2] and not sys.argv[1].startswith("-") else ["ldem"])
+    os.write(2, f"{command}: {_how(signum)} while starting: nothing ran\n".encode())
+    os._exit(128 + signum)
+
+
+def exit_while_starting() -> None:
+    """SIGINT and SIGTERM end `ldem` at once with one line while it starts
+    (imports, options): nothing is written yet, and an exception raised in an
+    import could come out of it wrapped (Python 3.11 wraps one raised while a
+    class is made: "Error calling __set_name__", in matplotlib's 3-D axes). A
+    signal ignored by the caller (nohup, a background job) stays ignored."""
+    for s in (signal.SIGINT, signal.SIGTERM):  # SIGTERM last: a test sees it caught once both are
+        if signal.getsignal(s) is not signal.SIG_IGN:
+            signal.signal(s, _exit_at_once)
+
+
+def raise_on_signals() -> None:
+    """From the start of the work on: SIGINT raises KeyboardInterrupt and
+    SIGTERM Terminated (in the main thread), which the command turns into its
+    message of what is kept."""
+    if signal.getsignal(signal.SIGINT) is not signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
     signal.signal(signal.SIGTERM, _terminate)
 
 

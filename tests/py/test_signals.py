@@ -45,6 +45,61 @@ def _signal_and_time(proc, signum=signal.SIGTERM):
     return proc.returncode, err, time.monotonic() - t0
 
 
+def _caught(pid: int, signum: int) -> bool:
+    """Whether process pid has a handler of its own for signum (its SigCgt mask, /proc/PID/status)."""
+    with open(f"/proc/{pid}/status") as f:
+        mask = next(line for line in f if line.startswith("SigCgt:")).split()[1]
+    return bool(int(mask, 16) >> (signum - 1) & 1)
+
+
+STARTING = 0.5  # seconds from the start to the handlers, at most: the interpreter's own start (0.04-0.09 s here)
+
+
+@pytest.mark.parametrize("command", ["cube", "run"])
+@pytest.mark.parametrize("delay", [0.05, 0.3, 1.0, 2.0])
+@pytest.mark.parametrize("signum,code,how", [(signal.SIGTERM, 143, "terminated (SIGTERM)"),
+                                             (signal.SIGINT, 130, "interrupted")], ids=["SIGTERM", "SIGINT"])
+def test_a_signal_at_any_time_from_the_start_gives_one_line(tmp_path, command, delay, signum, code, how):
+    """From its first line on, `ldem` hears SIGINT and SIGTERM: while it
+    imports numpy, the core, the studies and matplotlib (it was a
+    KeyboardInterrupt traceback, a RuntimeError from matplotlib's 3-D axes,
+    or a silent death by SIGTERM), in set-up, and in the run (records 10^8
+    steps apart). Each signal gives one line and 128 + the signal. Only the
+    interpreter's own start comes before any line of ldem: a signal sent
+    earlier waits for the handlers, which must be there STARTING seconds from
+    the start (they were after the imports, seconds on a busy machine)."""
+    what = ["cube", "--size", "0.04"] if command == "cube" else \
+        ["run", os.path.join(os.path.dirname(LDEM_SCRIPT), "..", "..", "examples", "cube_uniform.toml")]
+    t0 = time.monotonic()
+    proc = _start(*what, "--set" if command == "run" else "--record-every",
+                  "record_every=100000000" if command == "run" else "100000000",
+                  "--threads", "1", "--no-plots", "--no-progress", "--out", str(tmp_path / "out"))
+    time.sleep(delay)
+    _wait_for(lambda: _caught(proc.pid, signal.SIGTERM), proc, "the handlers", timeout=STARTING - (time.monotonic() - t0))
+    rc, err, seconds = _signal_and_time(proc, signum)
+    assert rc == code, err
+    assert len(err.splitlines()) == 1 and err.startswith(f"ldem {command}: {how}"), err
+    assert time.monotonic() - t0 < delay + STARTING + DEADLINE
+
+
+def test_a_signal_wrapped_by_an_import_is_still_a_signal(monkeypatch, capsys):
+    """Python 3.11 wraps an exception raised while a class is made (a
+    descriptor's __set_name__, as in matplotlib's 3-D axes, imported where
+    pictures are drawn) in a RuntimeError: the command still says it was
+    interrupted, in one line, with 130."""
+    from ldem import cli, run_command
+
+    class Descriptor:
+        def __set_name__(self, owner, name):
+            raise KeyboardInterrupt()
+
+    def made_while_interrupted(args):
+        type("Axes", (), {"x": Descriptor()})
+    monkeypatch.setattr(run_command, "cmd_cube", made_while_interrupted)
+    assert cli.main(["cube", "--out", "nowhere"]) == 130
+    assert capsys.readouterr().err.startswith("ldem cube: interrupted: nothing ran")
+
+
 def _rows(path):
     return max(0, len(path.read_text().splitlines()) - 1) if path.exists() else 0
 
