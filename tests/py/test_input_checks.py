@@ -2,6 +2,7 @@
 lattice's memory estimate for ldem cube, ldem run and the Python API (one C++
 function, pkg/ldem/Lattice.hpp checkFits), and the bounds that tie parameters
 (pkg/ldem/Relations.hpp), each refused with its message and exit code 2."""
+import math
 import os
 import time
 
@@ -46,6 +47,7 @@ def test_a_cube_beyond_any_rank_gets_no_mpi_advice(cli, tmp_path):
     assert "MPI" not in line
 
 
+@pytest.mark.direct
 def test_mpi_advice_only_when_the_memory_holds_the_lattice():
     """Past 32-bit node ids (2^31 bars) one process cannot number the lattice;
     ranks on this machine can hold it only if its memory can."""
@@ -114,6 +116,21 @@ def test_the_help_states_the_rules_with_true_numbers(cli):
         assert rule in text, rule
 
 
+@pytest.mark.direct
+def test_the_ramp_time_is_held_to_the_rate_rate_periods_derives():
+    """rate_periods N sets the rate from the specimen's omega_1 at set-up:
+    eps_p / strain_rate = N T1. The smooth start's bound (ramp_time at most
+    eps_p / strain_rate, pkg/ldem/Relations.hpp) is that rate's: 3 T1 here,
+    a tenth of the bound of the strain_rate given beside it (0.02 /s)."""
+    base = dict(size=0.04, rate_periods=3.0, strain_rate=0.02, threads=1)
+    T1 = 2 * math.pi / ldem.CubeTest(**base).simulation().omega1
+    assert ldem.CubeTest(**base).eps_p / 0.02 > 10 * 3 * T1  # the rate given would allow 10 times the ramp
+    assert ldem.CubeTest(**base, ramp_time=0.99 * 3 * T1).simulation().ramp_time == 0.99 * 3 * T1
+    with pytest.raises(ValueError, match=r"ramp_time .* s is above eps_p / strain_rate = .* s: the smooth start"):
+        ldem.CubeTest(**base, ramp_time=1.01 * 3 * T1).simulation()
+
+
+@pytest.mark.direct
 def test_raising_c_a_is_what_lowers_the_brittle_bound():
     """The advice of the messages above: G_b = E A eps_p^2 L / (2 A_f) with A_f = c_a L0^2, so twice c_a halves it."""
     low, high = (ldem.CubeTest(c_a=c).params().material for c in (0.1, 0.2))

@@ -3,10 +3,12 @@
 far apart, a study's worker processes), and a message that says only what
 the files hold. Each test signals the real command and gives it 5 s."""
 import json
+import math
 import os
 import signal
 import subprocess
 import time
+from types import SimpleNamespace
 
 import pytest
 
@@ -98,6 +100,26 @@ def test_a_signal_wrapped_by_an_import_is_still_a_signal(monkeypatch, capsys):
     monkeypatch.setattr(run_command, "cmd_cube", made_while_interrupted)
     assert cli.main(["cube", "--out", "nowhere"]) == 130
     assert capsys.readouterr().err.startswith("ldem cube: interrupted: nothing ran")
+
+
+@pytest.mark.direct
+def test_the_wait_for_the_next_record_is_paced_from_the_last(monkeypatch):
+    """SignalsAtRecords.seconds_to_record: the steps to the next record at
+    the pace since the last. A record every 100 steps, the last at step 100
+    at t = 10 s, now step 130 at t = 13 s: 70 steps to go at 0.1 s a step, 7 s.
+    At a record 0; before any step since the last, the pace is unknown: inf."""
+    from ldem import signals
+
+    now = [10.0]
+    monkeypatch.setattr(signals.time, "monotonic", lambda: now[0])
+    sim = SimpleNamespace(steps=100, record_every=100)
+    held = signals.SignalsAtRecords(sim=sim)
+    assert held.seconds_to_record() == 0.0
+    held({"step": 100})
+    sim.steps, now[0] = 130, 13.0
+    assert held.seconds_to_record() == pytest.approx(7.0, rel=1e-12)
+    held.last = (10.0, 130)
+    assert held.seconds_to_record() == math.inf  # no step since the last record seen
 
 
 def _rows(path):
