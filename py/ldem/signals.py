@@ -59,13 +59,17 @@ class SignalsAtRecords:
     that record (every other observer has seen it, curve.csv has its row),
     then checkpoint.npz of that record is written (with a saver) and the
     signal's own handler runs (KeyboardInterrupt, or Terminated): a restart
-    continues from there bit for bit. One farther from its record, or a
-    second signal, runs its handler at once: the run stops between records,
-    where no checkpoint can be taken. Only Python handlers are held (not the
-    defaults, not off the main thread, where signals cannot be handled)."""
+    continues from there bit for bit. With a saver, one up to WAIT_SECONDS
+    from its record is held too, saying so in a line: a run whose records
+    are seconds apart (a large specimen on a busy machine) keeps its
+    checkpoint whenever it is stopped. One farther, or a second signal, runs
+    its handler at once: the run stops between records, where no checkpoint
+    can be taken. Only Python handlers are held (not the defaults, not off
+    the main thread, where signals cannot be handled)."""
 
     SIGNALS = (signal.SIGINT, signal.SIGTERM)
     NEAR_SECONDS = 1.0
+    WAIT_SECONDS = 20.0  # below a batch system's grace between SIGTERM and SIGKILL (Slurm's KillWait: 30 s)
 
     def __init__(self, saver=None, sim=None):
         self.saver, self.sim, self.pending, self.previous = saver, sim, None, {}
@@ -79,8 +83,12 @@ class SignalsAtRecords:
         return self
 
     def _hold(self, signum, frame):
-        if self.pending is None and self.seconds_to_record() <= self.NEAR_SECONDS:
+        wait = self.seconds_to_record()
+        if self.pending is None and (wait <= self.NEAR_SECONDS or self.saver is not None and wait <= self.WAIT_SECONDS):
             self.pending = signum
+            if wait > self.NEAR_SECONDS:  # os.write: a print could be re-entered, the signal come amid one
+                os.write(2, f"{_how(signum)}: stopping at the next record, in about {wait:.0f} s, to keep its "
+                            "checkpoint; a second signal stops at once\n".encode())
         else:
             self._handle(signum)
 
