@@ -22,8 +22,9 @@ import numpy as np  # noqa: E402
 import ldem  # noqa: E402
 import ldem.plots  # noqa: E402,F401  (the figures' style, whose dpi the gallery keeps)
 from ldem import study  # noqa: E402
-from ldem.helptext import settings  # noqa: E402
+from ldem.helptext import ArgumentParser, settings  # noqa: E402
 from ldem.runner import default_writers  # noqa: E402
+from ldem.scene import exit_with  # noqa: E402
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
 
@@ -46,7 +47,7 @@ def side_by_side(pictures, title: str, path: str) -> None:
 
 
 def main() -> None:
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", default=os.path.join("out", "gallery"), help="run folders, one per example")
     ap.add_argument("--out", default=os.path.join(ROOT, "docs", "gallery"), help="where the pictures go")
     ap.add_argument("--threads", type=int, default=1, help="OpenMP threads per run")
@@ -73,4 +74,4 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    exit_with(main)

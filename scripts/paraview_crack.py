@@ -14,15 +14,34 @@ and ldem run write them; --snapshots adds frames at chosen mean strains). The
 camera looks along +y with z up: the side of a specimen pulled or bent along z.
 """
 import json
+import math
 import os
 import sys
+
+
+def arguments(argv):
+    """RUN [SCALE] (the displacement magnification); a bad one is one line and
+    exit code 2, as ldem's, before ParaView loads."""
+    run = argv[1] if len(argv) > 1 else os.path.join("out", "cube")
+    try:
+        scale = float(argv[2]) if len(argv) > 2 else 1.0
+    except ValueError:
+        scale = math.nan
+    why = "usage: paraview_crack.py RUN [SCALE]" if len(argv) > 3 else \
+        f"SCALE must be a positive number (got {argv[2]!r})" if not (0 < scale < math.inf) else \
+        f"{run} holds no bars.pvd and crack.pvd (ldem cube and ldem run write them)" if not all(
+            os.path.isfile(os.path.join(run, n)) for n in ("bars.pvd", "crack.pvd")) else ""
+    if why:
+        print(f"paraview_crack.py: error: {why}", file=sys.stderr)
+        sys.exit(2)
+    return run, scale
+
+
+RUN, SCALE = arguments(sys.argv)
 
 from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetAnimationScene, GetColorTransferFunction,  # noqa
                              GetScalarBar, PVDReader, Render, ResetCamera, SaveScreenshot, Show, Text,
                              WarpByVector)
-
-RUN = sys.argv[1] if len(sys.argv) > 1 else os.path.join("out", "cube")
-SCALE = float(sys.argv[2]) if len(sys.argv) > 2 else 1.0  # displacement magnification
 
 
 

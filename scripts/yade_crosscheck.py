@@ -53,7 +53,6 @@ breaks, which is why the triangular load is the default.
 Run: yade-double -n -x scripts/yade_crosscheck.py [OUT] [--modules N] [--load L] [--strain-rate R]
                                                  [--final-strain E] [--zeta Z] [--save NPZ]
 """
-import argparse
 import math
 import os
 import sys
@@ -64,6 +63,7 @@ import numpy as np
 # ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
 import ldem
 import ldem.yade as ly
+from ldem.helptext import ArgumentParser
 from ldem.scene import exit_with
 
 # The source tree: this script's parent folder (under YADE, __file__ is yade-double and argv[0] the script).
@@ -79,7 +79,7 @@ TOL = dict(peak=1e-8, strain_at_peak=1e-8, curve=1e-8, energy=1e-8, balance=1e-3
 
 
 def parse(argv):
-    p = argparse.ArgumentParser(prog="yade-double -n -x scripts/yade_crosscheck.py")
+    p = ArgumentParser(prog="yade-double -n -x scripts/yade_crosscheck.py")
     p.add_argument("out", nargs="?", default=os.path.join("out", "yade_crosscheck.png"))
     p.add_argument("--modules", type=int, default=6, help="modules per side (6: the 0.12 m cube)")
     p.add_argument("--L0", type=float, default=0.02)

@@ -62,13 +62,13 @@ and writes curve.csv (mean_strain,stress_MPa,step,time_s,stress_top_MPa) and
 summary.json into --out (into --out/size_<L> when several sizes are given).
 Exit code 0 done, 1 a failed run, 2 bad arguments.
 """
-import argparse
 import json
 import math
 import os
 import sys
 import time
 
+from ldem.helptext import ArgumentParser
 from ldem.scene import exit_with
 
 # uniax.py's ratio of the shear cohesion to the contact's tensile strength
@@ -80,7 +80,7 @@ REL_DUCTILITY = 3.0
 
 
 def parse(argv):
-    p = argparse.ArgumentParser(prog="yade-double -j 1 -n -x scripts/yade_native_cpm.py",
+    p = ArgumentParser(prog="yade-double -j 1 -n -x scripts/yade_native_cpm.py",
                                 description="uniform-tension cube test with YADE's Cpm concrete model")
     p.add_argument("--size", type=float, nargs="+", default=[0.12], help="cube side(s) [m]")
     p.add_argument("--out", default=os.path.join("out", "yade_native"), help="output folder")

@@ -27,18 +27,18 @@ step; the defaults are one (0.06 m, 5 /s, seed 2: in ldem U_num moves by
 Run: yade-double -n -x scripts/yade_separation.py [--modules N] [--seed S] [--strain-rate R] [--load L]
                                                  [--record-every K] [--energy-tol T]
 """
-import argparse
 import sys
 import time
 
 # ldem as installed by install.sh, or the build tree's (PYTHONPATH=build/python).
 import ldem.yade as ly
 from ldem import _core
+from ldem.helptext import ArgumentParser
 from ldem.scene import exit_with
 
 
 def parse(argv):
-    p = argparse.ArgumentParser(prog="yade-double -n -x scripts/yade_separation.py")
+    p = ArgumentParser(prog="yade-double -n -x scripts/yade_separation.py")
     p.add_argument("--modules", type=int, default=3, help="modules per side (3: a 0.06 m cube)")
     p.add_argument("--L0", type=float, default=0.02)
     p.add_argument("--seed", type=int, default=2)

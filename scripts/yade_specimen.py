@@ -13,7 +13,6 @@ peak) and both broke bars.
 
 Run: yade-double -n -x scripts/yade_specimen.py FILE.toml [--final-strain E] [--strain-rate R] [--tol T]
 """
-import argparse
 import sys
 import time
 
@@ -21,11 +20,12 @@ import numpy as np
 
 import ldem
 import ldem.yade as ly
+from ldem.helptext import ArgumentParser
 from ldem.scene import exit_with
 
 
 def parse(argv):
-    p = argparse.ArgumentParser(prog="yade-double -n -x scripts/yade_specimen.py")
+    p = ArgumentParser(prog="yade-double -n -x scripts/yade_specimen.py")
     p.add_argument("file", help="a specimen file (examples/*.toml)")
     p.add_argument("--final-strain", type=float, default=6e-4)
     p.add_argument("--strain-rate", type=float, default=1.0, help="[1/s]: fast, for YADE's Python hooks")

@@ -1,10 +1,13 @@
 #include "ldem/Lattice.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include "ldem/Interrupt.hpp"
 
+#include <fstream>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include <algorithm>
@@ -149,11 +152,66 @@ std::array<std::vector<double>, 3> nodePositions(const Lattice& lat) {
 
 std::int64_t memoryEstimate(int nx, int ny, int nz) { return kBytesPerBar * expectedBarCount(nx, ny, nz); }
 
+namespace {
+
+// The first number of `path` (0 if the file cannot be read or holds none: "max").
+double readNumber(const std::string& path) {
+    std::ifstream f(path);
+    double x = 0;
+    return f >> x ? x : 0;
+}
+
+// The cgroup's limit less its usage: v2's memory.max - memory.current, else v1's memory.limit_in_bytes -
+// memory.usage_in_bytes; -1 if there is no limit (a v1 "no limit" is about 2^63).
+double cgroupHeadroom() {
+    std::ifstream f("/proc/self/cgroup");
+    for (std::string line; std::getline(f, line);) {
+        const auto colon = line.find(':'), second = line.find(':', colon + 1);
+        if (colon == std::string::npos || second == std::string::npos) continue;
+        const std::string controllers = line.substr(colon + 1, second - colon - 1), path = line.substr(second + 1);
+        std::vector<std::pair<std::string, std::string>> files;  // (limit, usage), the process's cgroup first
+        if (line.compare(0, 3, "0::") == 0)
+            files = {{"/sys/fs/cgroup" + path + "/memory.max", "/sys/fs/cgroup" + path + "/memory.current"}};
+        else if (controllers == "memory")
+            for (const std::string& dir : {"/sys/fs/cgroup/memory" + path, std::string("/sys/fs/cgroup/memory")})
+                files.push_back({dir + "/memory.limit_in_bytes", dir + "/memory.usage_in_bytes"});
+        for (const auto& [limitFile, usageFile] : files)
+            if (const double limit = readNumber(limitFile); limit > 0 && limit < 1e18)
+                return std::max(0.0, limit - readNumber(usageFile));
+    }
+    return -1;
+}
+
+}  // namespace
+
 MemoryLimit memoryLimit() {
-    // The machine's, not a process limit's (ulimit -v): the estimate's margin would refuse lattices that run under
-    // one (dev/mpi_memory_limit.sh: 2 ranks of 82 MB under 130 MB); there an allocation that fails is one line, exit 2.
-    const long pages = sysconf(_SC_PHYS_PAGES), pageSize = sysconf(_SC_PAGE_SIZE);
-    return {pages > 0 && pageSize > 0 ? double(pages) * double(pageSize) : 0, "this machine has"};
+    // The smallest room the lattice may take: the machine's available memory (MemAvailable), the cgroup's
+    // limit less its usage, the address-space limit (ulimit -v) less the process's present size. (The
+    // estimate's margin refuses some lattices that would run under a tight ulimit: the refusal says which.)
+    const long pageSize = sysconf(_SC_PAGE_SIZE);
+    MemoryLimit have{0, "this machine has"};
+    {
+        std::ifstream meminfo("/proc/meminfo");
+        for (std::string key; meminfo >> key;) {
+            double kB = 0;
+            if (key == "MemAvailable:" && meminfo >> kB) {
+                have = {kB * 1024, "this machine has available"};
+                break;
+            }
+            meminfo.ignore(std::numeric_limits<std::streamsize>::max(), '\n');
+        }
+        if (have.bytes == 0 && sysconf(_SC_AVPHYS_PAGES) > 0 && pageSize > 0)
+            have = {double(sysconf(_SC_AVPHYS_PAGES)) * pageSize, "this machine has available"};
+    }
+    if (const double cgroup = cgroupHeadroom(); cgroup >= 0 && (have.bytes == 0 || cgroup < have.bytes))
+        have = {cgroup, "the cgroup's memory limit (memory.max) leaves"};
+    rlimit as{};
+    if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) {
+        const double size = readNumber("/proc/self/statm") * double(pageSize);  // the address space in use
+        const double room = std::max(0.0, double(as.rlim_cur) - size);
+        if (have.bytes == 0 || room < have.bytes) have = {room, "the address-space limit (ulimit -v) leaves"};
+    }
+    return have;
 }
 
 std::string latticeMisfit(int nx, int ny, int nz, int k0, int k1, const MemoryLimit& have) {

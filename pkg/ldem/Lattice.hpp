@@ -171,10 +171,12 @@ std::int64_t expectedBarCount(int nx, int ny, int nz);
 // is 63 B at 24^3 and 38 B at 48^3 (lattice, state, Lanczos); with a margin.
 constexpr std::int64_t kBytesPerBar = 100;
 std::int64_t memoryEstimate(int nx, int ny, int nz);
-// The memory a lattice must fit: the machine's physical memory; bytes 0 if unknown.
+// The memory a lattice must fit: the smallest of the machine's available
+// memory, the cgroup's limit less its usage and the address-space limit
+// (ulimit -v) less the process's size; bytes 0 if unknown.
 struct MemoryLimit {
     double bytes;
-    const char* what;  // "this machine has"
+    const char* what;  // which: "this machine has available", "the address-space limit (ulimit -v) leaves", ...
 };
 MemoryLimit memoryLimit();
 // Why the slab of module layers [k0, k1) of an nx x ny x nz lattice (its box:

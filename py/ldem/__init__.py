@@ -5,6 +5,7 @@ fracture and size effects in concrete. See README.md and docs/ for the manual.
     result = ldem.CubeTest(size=0.12, load="uniform", seed=1).run()     # data
     result = ldem.run_cube(ldem.CubeTest(size=0.12), out="out/cube")   # and its files
 """
+import importlib
 import os
 
 # Idle OpenMP threads sleep rather than spin (GOMP spins 300,000 rounds
@@ -13,9 +14,19 @@ import os
 # _core loads it, so set before; a user's own setting stands.
 os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
-from ._core import InstabilityError, Material, Simulation  # noqa: E402,F401
-from .cube import CURVE_COLUMNS, CubeResult, CubeTest  # noqa: E402,F401
-from .runner import run_cube  # noqa: E402,F401
-from .specimen import SpecimenTest  # noqa: E402,F401
-
 __version__ = "0.1.0"
+
+# The package's names, each loaded when first asked for (PEP 562): importing
+# ldem, or any of its modules, loads neither numpy nor the core, so that the
+# `ldem` command hears signals from its first instant (ldem.__main__).
+_NAMES = {"InstabilityError": "_core", "Material": "_core", "Simulation": "_core", "CURVE_COLUMNS": "cube",
+          "CubeResult": "cube", "CubeTest": "cube", "run_cube": "runner", "SpecimenTest": "specimen"}
+__all__ = sorted(_NAMES)
+
+
+def __getattr__(name):
+    if name not in _NAMES:
+        raise AttributeError(f"module 'ldem' has no attribute {name!r}")
+    value = getattr(importlib.import_module(f".{_NAMES[name]}", __name__), name)
+    globals()[name] = value
+    return value

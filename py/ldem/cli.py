@@ -6,7 +6,6 @@ from __future__ import annotations
 import argparse
 import dataclasses
 import os
-import re
 import signal
 import sys
 
@@ -14,37 +13,22 @@ import sys
 from .bench import cmd_bench
 from .rerun import RERUN_SKIPS, cmd_rerun  # noqa: F401 (RERUN_SKIPS: the fields a rerun does not compare)
 from .cube import CubeTest
-from .helptext import HelpFormatter, add_parameter_option
-from .run_command import EXIT_BAD_INPUT, EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
-from .signals import Terminated, terminate_on_sigterm
+from .helptext import EXIT_BAD_INPUT, ArgumentParser, HelpFormatter, add_parameter_option
+from .run_command import EXIT_FAILED, add_parsers, how_to_continue, what_is_kept
+from .signals import Terminated, raise_on_signals
 
 
 CUBE_FIELDS = {f.name: f for f in dataclasses.fields(CubeTest)}
-
-
-class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error (no usage dump) and exit code 2, and a
-    negative number in any notation taken as the value it is (--eps-p -1e-5)."""
-
-    def __init__(self, *args, **kwargs):
-        super().__init__(*args, **kwargs)
-        # argparse's own pattern knows -1 and -.5 but not -1e-5, which it took for an option and answered
-        # "expected one argument" where the bounds should be said. Any "-" before a digit (or ".digit") is
-        # a number here: no option of ldem looks like one.
-        self._negative_number_matcher = re.compile(r"-\.?\d")
-
-    def error(self, message):
-        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
 
 
 def build_parser() -> argparse.ArgumentParser:
     from . import __version__
     from .cube import provenance
 
-    p = _Parser(prog="ldem", description="Truss-like lattice DEM (Riera-Iturrioz) for fracture of concrete.")
+    p = ArgumentParser(prog="ldem", description="Truss-like lattice DEM (Riera-Iturrioz) for fracture of concrete.")
     commit = provenance()["git_commit"]
     p.add_argument("--version", action="version", version=f"ldem {__version__}" + (f" (git {commit})" if commit else ""))
-    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub = p.add_subparsers(dest="command", metavar="COMMAND", parser_class=ArgumentParser)
     sub.required = True
 
     add_parsers(sub)
@@ -82,7 +66,7 @@ def main(argv=None) -> int:
     args = build_parser().parse_args(argv)
     from . import _core
 
-    terminate_on_sigterm()
+    raise_on_signals()  # the command's work starts: a signal is heard where it is, and its files say what is kept
     # Under mpirun, rank 0 speaks for all (read from mpirun's environment: MPI
     # itself starts only when a lattice is split, so `ldem bench` leaves it to ldem-bench).
     rank = int(os.environ.get("OMPI_COMM_WORLD_RANK") or os.environ.get("PMIX_RANK") or 0)
@@ -106,14 +90,13 @@ def main(argv=None) -> int:
         print(f"ldem {args.command}: failed: {where}: {e.strerror or e} (summary.json does not say done)",
               file=sys.stderr)
         return EXIT_FAILED
-    except KeyboardInterrupt as e:
+    except (KeyboardInterrupt, RuntimeError) as e:
+        # A signal while a class is made (in an import done where it is needed: matplotlib's where pictures
+        # are drawn) comes wrapped in Python 3.11's RuntimeError "Error calling __set_name__".
+        e = e if isinstance(e, KeyboardInterrupt) else e.__cause__
+        if not isinstance(e, KeyboardInterrupt):
+            raise
         how = "terminated (SIGTERM)" if isinstance(e, Terminated) else "interrupted"
         print(f"ldem {args.command}: {how}: {what_is_kept(args)}{how_to_continue(args)}",
               file=sys.stderr)
         return 128 + (signal.SIGTERM if isinstance(e, Terminated) else signal.SIGINT)
-
-
-def console() -> None:
-    """The `ldem` command of a pip installation (py/bin/ldem for the others)."""
-    sys.exit(main())
-

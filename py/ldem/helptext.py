@@ -1,8 +1,28 @@
-"""Help texts of the command line (`ldem ...`, `ldem study ...`)."""
+"""Help texts of the command line (`ldem ...`, `ldem study ...`), and its
+parser, which the scripts of scripts/ share."""
 import argparse
 import dataclasses
+import re
 
 from .cube import CubeTest
+
+
+EXIT_BAD_INPUT = 2  # every ldem command's and script's exit code for bad input
+
+
+class ArgumentParser(argparse.ArgumentParser):
+    """argparse with a one-line error (no usage dump) and exit code 2, and a
+    negative number in any notation taken as the value it is (--eps-p -1e-5)."""
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        # argparse's own pattern knows -1 and -.5 but not -1e-5, which it took for an option and answered
+        # "expected one argument" where the bounds should be said. Any "-" before a digit (or ".digit") is
+        # a number here: no option of ldem looks like one.
+        self._negative_number_matcher = re.compile(r"-\.?\d")
+
+    def error(self, message):
+        self.exit(EXIT_BAD_INPUT, f"{self.prog}: error: {message}\n")
 
 
 def parameter_help(field, note: str = "", each: str = "") -> str:

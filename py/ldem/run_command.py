@@ -16,7 +16,7 @@ import sys
 
 from .helptext import HelpFormatter, add_output_flags, add_parameter_option
 
-EXIT_BAD_INPUT, EXIT_FAILED = 2, 1
+EXIT_FAILED = 1
 
 
 def add_cube_options(p: argparse.ArgumentParser, skip=()) -> None:

@@ -71,7 +71,8 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
     if restart:
         previous, wall_before = io.restore(test, sim, out, extend)
     root = parallel.is_root()  # under MPI, rank 0 writes the files every rank has (the curve, the summary)
-    bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance)
+    bar = ProgressBar(test.final_strain, enabled=progress if root else False, energy_tolerance=test.energy_tolerance,
+                      energy_scale=sim.min_fracture_energy)
     run = io.Run(test, sim, out, previous, dict(snapshots=snapshots, figure_format=figure_format, restart=restart,
                                                 checkpoint_every=checkpoint_every, title=title,
                                                 checkpoint_seconds=checkpoint_seconds, wall_before=wall_before))

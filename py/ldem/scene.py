@@ -2,11 +2,11 @@
 yade-double and yade-double-batch alike."""
 from __future__ import annotations
 
-import argparse
 import os
 import sys
 
-from .run_command import EXIT_BAD_INPUT, EXIT_FAILED
+from .helptext import EXIT_BAD_INPUT, ArgumentParser
+from .run_command import EXIT_FAILED
 
 
 def in_yade() -> bool:
@@ -26,13 +26,17 @@ def parameters(defaults: dict, argv=None) -> dict:
     """
     if os.environ.get("YADE_BATCH") or os.environ.get("PARAM_TABLE"):
         from yade import utils  # noqa: F401 (only under yade-double-batch)
-        utils.readParamsFromTable(noTableOk=True, **defaults)
+        try:
+            utils.readParamsFromTable(noTableOk=True, **defaults)
+        except NameError as e:  # a column the script has no parameter for: a user's mistake, one line
+            raise ValueError(f"the batch table: {e}") from None
         from yade.params import table
         values = {k: getattr(table, k) for k in defaults}
         from yade import O
         values["description"] = O.tags.get("description", "") if hasattr(O.tags, "get") else O.tags["description"]
     else:
-        p = argparse.ArgumentParser(description="scene script parameters (defaults in the script)")
+        p = ArgumentParser(prog=os.path.basename(sys.argv[0]) or "scene",
+                           description="scene script parameters (defaults in the script)")
         for k, v in defaults.items():
             p.add_argument("--" + k.replace("_", "-"), dest=k, type=type(v) if v is not None else str, default=v)
         values = vars(p.parse_args(sys.argv[1:] if argv is None else argv))

@@ -358,6 +358,11 @@ PYBIND11_MODULE(_core, m) {
           }, py::arg("nx"), py::arg("ny"), py::arg("nz"),
           "raises ValueError, with the estimate, unless this process's slab of the nx x ny x nz lattice fits it "
           "(the check every builder makes before it allocates)");
+    m.def("memory_limit", [] {
+              const MemoryLimit have = memoryLimit();
+              return py::make_tuple(have.bytes, have.what);
+          }, "(bytes, which) of the smallest room a lattice may take: the machine's available memory, the "
+             "cgroup's limit less its usage, the address-space limit (ulimit -v) less the process's size");
     m.def("lattice_misfit", [](int nx, int ny, int nz, double bytes) {
               return latticeMisfit(nx, ny, nz, 0, nz, MemoryLimit{bytes, "this machine has"});
           }, py::arg("nx"), py::arg("ny"), py::arg("nz"), py::arg("bytes"),

@@ -72,13 +72,13 @@ ConstantRateDrive fixedDrive() {
 
 AdaptiveDrive::Limits limits() { return {20, 2000, 0.005, 0.1, 1.1, 2e-4, 1e3, 1e-3}; }
 
-TEST(DynamicParts, TheFixedDriveRoundTripsItsSpeedupStart) {
+TEST(DirectDynamicParts, TheFixedDriveRoundTripsItsSpeedupStart) {
     driveRoundTrip(fixedDrive(), fixedDrive(), 8);  // past the load loss: the speed-up has started
     ConstantRateDrive d = fixedDrive();
     EXPECT_TRUE(std::isinf(d.state().at(0)));  // none before the load loss
 }
 
-TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
+TEST(DirectDynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
     const AdaptiveTailDrive d(fixedDrive(), limits());
     driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 3);   // not started: the ramp's state only
     driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits()), 12);  // started: its U, factors, averages too
@@ -95,7 +95,7 @@ TEST(DynamicParts, TheAdaptiveDriveRoundTripsBeforeAndAfterItStarts) {
 }
 
 // recordAt's K/W runs from 1e-2 to 3e-3: at crack_kinetic 5e-3 the pace brakes and releases.
-TEST(DynamicParts, TheAdaptiveDriveRoundTripsItsPace) {
+TEST(DirectDynamicParts, TheAdaptiveDriveRoundTripsItsPace) {
     const CrackPace::Limits pace{0.0625, 5e-3, 1e-7, 1.1};
     const AdaptiveTailDrive d(fixedDrive(), limits(), pace);
     driveRoundTrip(d, AdaptiveTailDrive(fixedDrive(), limits(), pace), 3);   // braking, before the loss
@@ -108,7 +108,7 @@ TEST(DynamicParts, TheAdaptiveDriveRoundTripsItsPace) {
     EXPECT_EQ(paced.state().size(), 3u + CrackPace::kStateSize);  // the ramp's 3, then the pace's
 }
 
-TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {
+TEST(DirectDynamicParts, TheServoRoundTripsItsDisplacements) {
     ServoDrive::Params p;
     p.openingRate = 1e-3;
     driveRoundTrip(ServoDrive(p, fixedDrive(), 50.0), ServoDrive(p, fixedDrive(), 50.0), 6);
@@ -120,7 +120,7 @@ TEST(DynamicParts, TheServoRoundTripsItsDisplacements) {
 // delta/e (dt g = 2.5e-4: to 1e-3). Stepped, the lag tends to -r dt/2 (the
 // program is read at mid-step, the opening at t_n): delta - that decays.
 // Without the correction the lag stays delta.
-TEST(DynamicParts, TheServoClosesALagAtHalfTheDampingRate) {
+TEST(DirectDynamicParts, TheServoClosesALagAtHalfTheDampingRate) {
     ServoDrive::Params p;
     p.openingRate = 1e-3;  // r [m/s]
     const double Df = 50.0, a = 2.0, dt = 1e-5, t0 = 1e-3, delta = 3e-7;
@@ -153,7 +153,7 @@ void recordRoundTrip(Part first, Part fresh, int records, Feed feed) {
     EXPECT_EQ(s.converged.step, t.converged.step);
 }
 
-TEST(DynamicParts, TheLoadLossTestRoundTripsItsWindow) {
+TEST(DirectDynamicParts, TheLoadLossTestRoundTripsItsWindow) {
     int lost = 0;
     recordRoundTrip(LoadLossDetector(5e-4, 0.5), LoadLossDetector(5e-4, 0.5), 6,
                     [&](LoadLossDetector& d, RunSummary& s, const CurvePoint& p) { lost += d.record(p, s); });
@@ -170,7 +170,7 @@ auto stopFeed(std::function<bool()> joined) {
     };
 }
 
-TEST(DynamicParts, TheSeparationStopRoundTripsItsLastTest) {
+TEST(DirectDynamicParts, TheSeparationStopRoundTripsItsLastTest) {
     int tests = 0;
     // Joined until the fifth union-find: the event falls after the round trip.
     const std::function<bool()> joined = [&] { return ++tests < 10; };
@@ -178,7 +178,7 @@ TEST(DynamicParts, TheSeparationStopRoundTripsItsLastTest) {
     EXPECT_GT(tests, 5);
 }
 
-TEST(DynamicParts, TheConvergedStopRoundTripsItsRungs) {
+TEST(DirectDynamicParts, TheConvergedStopRoundTripsItsRungs) {
     ConvergedStop::Params p;
     p.convergedGrowth = 0.3;
     recordRoundTrip(ConvergedStop(p), ConvergedStop(p), 7, stopFeed<ConvergedStop>([] { return true; }));
@@ -186,7 +186,7 @@ TEST(DynamicParts, TheConvergedStopRoundTripsItsRungs) {
 
 // The load-loss stop waits for the load loss and for loss_stop_strain_ratio x
 // the strain at the peak, whichever comes last.
-TEST(DynamicParts, TheLoadLossStopNeverEndsARunBeforeItsMultipleOfThePeakStrain) {
+TEST(DirectDynamicParts, TheLoadLossStopNeverEndsARunBeforeItsMultipleOfThePeakStrain) {
     LoadLossStop::Params p;
     p.lossStopStrainRatio = 10;
     const LoadLossStop stop(p);
@@ -206,7 +206,7 @@ TEST(DynamicParts, TheLoadLossStopNeverEndsARunBeforeItsMultipleOfThePeakStrain)
 // The past-the-peak stop ends the run at peak_stop_strain_ratio x the strain at
 // the peak, lost load or not; never before the peak (no strain at the peak yet),
 // and never on the rising branch, where the peak so far is the latest record.
-TEST(DynamicParts, ThePastPeakStopEndsARunAtItsMultipleOfThePeakStrain) {
+TEST(DirectDynamicParts, ThePastPeakStopEndsARunAtItsMultipleOfThePeakStrain) {
     PastPeakStop::Params p;
     p.peakStopStrainRatio = 10;
     const PastPeakStop stop(p);
@@ -229,7 +229,7 @@ TEST(DynamicParts, ThePastPeakStopEndsARunAtItsMultipleOfThePeakStrain) {
     EXPECT_TRUE(std::holds_alternative<PastPeakStop>(stops[1]));
 }
 
-TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
+TEST(DirectDynamicParts, TheStatelessPartsRoundTripNothing) {
     FinalStrainStop::Params f;
     EXPECT_TRUE(FinalStrainStop(f).state().empty());
     EXPECT_TRUE(LoadLossStop(LoadLossStop::Params{}).state().empty());
@@ -243,13 +243,36 @@ TEST(DynamicParts, TheStatelessPartsRoundTripNothing) {
     EXPECT_TRUE(sameBits(cd.a, want.a) && sameBits(cd.b, want.b) && sameBits(cd.Df, want.Df));
 }
 
-TEST(DynamicParts, TheQuasiStaticFlagRoundTripsItsPeakRecord) {
+TEST(DirectDynamicParts, TheQuasiStaticFlagRoundTripsItsPeakRecord) {
     KineticAtPeak first, fresh;
     for (int k = 0; k < 3; ++k) first.record(recordAt(k));
     fresh.setState(first.state());
     for (int k = 3; k < 30; ++k) first.record(recordAt(k)), fresh.record(recordAt(k));
     EXPECT_TRUE(sameBits(first.ratio(), fresh.ratio()));
     EXPECT_GT(first.ratio(), 0.0);
+}
+
+// The quasi-static flag's own quantity (QuasiStatic.hpp): K / W at the record of
+// the largest stress (the first such record; a later equal stress does not
+// move it), flagged above 1 % and only above. Hand values: stresses 1, 3, 2, 3
+// MPa with K / W 0.5 %, 1.5 %, 4 %, 0.2 %: the peak is the second record.
+TEST(DirectDynamicParts, TheQuasiStaticFlagIsKineticOverWorkAtThePeakAboveOnePercent) {
+    auto record = [](double stressMPa, double kinetic) {
+        CurvePoint p;
+        p.stress = stressMPa * 1e6, p.externalWork = 2.0, p.kinetic = kinetic;
+        return p;
+    };
+    KineticAtPeak q;
+    q.record(record(1, 0.010));
+    EXPECT_DOUBLE_EQ(q.ratio(), 0.005);
+    EXPECT_FALSE(q.flagged());
+    for (const auto& [s, k] : {std::pair{3.0, 0.030}, {2.0, 0.080}, {3.0, 0.004}}) q.record(record(s, k));
+    EXPECT_DOUBLE_EQ(q.ratio(), 0.015);
+    EXPECT_TRUE(q.flagged());
+    KineticAtPeak atTheLimit;
+    atTheLimit.record(record(1, 0.02));  // exactly 1 %: not above it
+    EXPECT_DOUBLE_EQ(atTheLimit.ratio(), kKineticAtPeakLimit);
+    EXPECT_FALSE(atTheLimit.flagged());
 }
 
 }  // namespace

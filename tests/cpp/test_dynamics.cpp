@@ -29,7 +29,7 @@ bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // (a) A time step above the stability limit is refused with a clear message;
 // one below it is used as given.
-TEST(Dynamics, TimeStepAboveStabilityLimitIsRefused) {
+TEST(DirectSetUp, TimeStepAboveStabilityLimitIsRefused) {
     Material m;
     LoadingParams lp;
     RunParams rp;
@@ -492,7 +492,7 @@ TEST(Dynamics, AFinishedRunExtendedEndsOnTheBitsOfAStraightRun) {
 // m g_z to the bars' force. One free node from rest, undamped, no bar force:
 // v(n+1/2) = g_z (n+1) dt and x(n+1) = g_z dt^2 (n+1)(n+2)/2 (the discrete
 // free fall); a held z DOF does not move, and x, y feel nothing.
-TEST(Dynamics, CentralDifferenceCarriesTheWeight) {
+TEST(DirectIntegrator, CentralDifferenceCarriesTheWeight) {
     const std::vector<double> mass{3.0, 3.0}, invMass{1 / 3.0, 1 / 3.0};
     const std::vector<std::uint8_t> mask{0, 4};  // node 1: z held
     Field3 u(2), v(2), f(2);
@@ -519,7 +519,7 @@ TEST(Dynamics, CentralDifferenceCarriesTheWeight) {
 // things move; a weight laid on at once read 7 % until the tenth period).
 // Risen slowly, the weight's work is mostly stored (a sudden weight would
 // store half and ring away the other).
-TEST(Dynamics, WeightIsCarriedByTheHeldFacesAndItsWorkBalances) {
+TEST(DirectIntegrator, WeightIsCarriedByTheHeldFacesAndItsWorkBalances) {
     Material m;
     m.epsP = 1e-2, m.GfMean = 1e6, m.GfCV = 0;  // elastic throughout
     LoadingParams lp;

@@ -37,7 +37,7 @@ MassDamping relativeDamping(double zeta, double omega1, const Field3& v) {
 
 // A drift at constant velocity V (no force): relative damping leaves it at V
 // (v+ = (a + b D_f) V = V), absolute damping takes a^N of it.
-TEST(RelativeDamping, DoesNotDampARigidDrift) {
+TEST(DirectRelativeDamping, DoesNotDampARigidDrift) {
     const int n = 11;  // a block of 8 nodes and 3 one by one
     const std::vector<double> mass(n, 2.0), invMass(n, 0.5);
     const std::vector<std::uint8_t> mask(n, 0);
@@ -111,7 +111,7 @@ TEST(RelativeDamping, DampsAVibrationWithTheStatedRatio) {
 // One step from random v, vbar and f: the kinetic energy changes by the work
 // of f over dt vmid less the damping work returned, sum D_f m (vmid - vbar) vmid dt,
 // to round-off (the discrete balance is exact).
-TEST(RelativeDamping, ItsWorkIsTheWorkOfTheForceApplied) {
+TEST(DirectRelativeDamping, ItsWorkIsTheWorkOfTheForceApplied) {
     const int n = 11;
     std::vector<double> mass(n), invMass(n);
     const std::vector<std::uint8_t> mask(n, 0);

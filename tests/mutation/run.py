@@ -33,6 +33,12 @@ tests/mutation/last_run.md.
     /usr/bin/python3 tests/mutation/run.py --list               # the mutations
     /usr/bin/python3 tests/mutation/run.py --check              # each applies and changes its file (no build)
     /usr/bin/python3 tests/mutation/run.py --only c_a_0_1358 --no-baseline
+    /usr/bin/python3 tests/mutation/run.py --manifest held_out.toml   # another catalogue (a held-out probe)
+
+--only runs the mutations named, in the order given. A mutation of Python
+alone (py/ldem/) skips the GoogleTest stages: the C++ it would test is the
+unmutated build's. Stopped (Ctrl-C, SIGTERM), the script ends its builds and
+test runs with it (each runs in a process group of its own, killed whole).
 """
 from __future__ import annotations
 
@@ -41,6 +47,7 @@ import datetime
 import os
 import platform
 import re
+import signal
 import subprocess
 import sys
 import tarfile
@@ -80,16 +87,46 @@ def load_mutations(path=MANIFEST):
     return muts
 
 
+def select(muts, only):
+    """The mutations named in `only`, in its order, each once; exits naming any unknown."""
+    unknown = set(only) - {m["name"] for m in muts}
+    if unknown:
+        sys.exit(f"unknown mutation(s): {', '.join(sorted(unknown))} (see --list)")
+    by_name = {m["name"]: m for m in muts}
+    return [by_name[name] for name in dict.fromkeys(only)]
+
+
 # -- helpers ------------------------------------------------------------------------
+STOPS = {signal.SIGINT, signal.SIGTERM}
+
+
 def sh(cmd, cwd=None, env=None, log=None, timeout=None, check=True):
-    """Runs cmd; its output goes to log (a path) if given, else is returned."""
+    """Runs cmd; its output goes to log (a path) if given, else is returned.
+    cmd runs in a process group of its own, killed whole if it times out or
+    this script is stopped: a build's compilers and a test run's workers
+    end with it (subprocess.run kills the child alone)."""
     out = open(log, "a") if log else subprocess.PIPE
+    # A stop while the child starts is held until this script knows it (a signal inside Popen would lose the
+    # child, as test_mutation_catalogue.py saw); the child itself starts with nothing blocked.
+    signal.pthread_sigmask(signal.SIG_BLOCK, STOPS)
+    proc = None
     try:
-        r = subprocess.run(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT, text=True,
-                           timeout=timeout)
+        try:
+            proc = subprocess.Popen(cmd, cwd=cwd, env=env, stdout=out, stderr=subprocess.STDOUT, text=True,
+                                    start_new_session=True,
+                                    preexec_fn=lambda: signal.pthread_sigmask(signal.SIG_UNBLOCK, STOPS))
+        finally:
+            signal.pthread_sigmask(signal.SIG_UNBLOCK, STOPS)  # a stop held meanwhile is heard here
+        stdout, _ = proc.communicate(timeout=timeout)
+    except BaseException:
+        if proc is not None:
+            os.killpg(proc.pid, signal.SIGKILL)
+            proc.wait()
+        raise
     finally:
         if log:
             out.close()
+    r = subprocess.CompletedProcess(cmd, proc.returncode, stdout)
     if check and r.returncode != 0:
         detail = "" if log else r.stdout[-3000:]
         raise RuntimeError(f"{' '.join(cmd)} failed ({r.returncode}){': ' + detail if detail else ''}"
@@ -281,16 +318,22 @@ def last_match(path, regex):
     return found
 
 
-def run_suite(scratch, tag, timeout, skip=None, fail_fast=True):
+def python_only(m) -> bool:
+    """A mutation of the Python package alone: the C++ core and its tests are the unmutated build's."""
+    return m["file"].startswith("py/ldem/") and m["file"].endswith(".py")
+
+
+def run_suite(scratch, tag, timeout, skip=None, fail_fast=True, stages=("gtest", "pytest")):
     """Runs the direct checks (GoogleTest, then pytest), then the rest of each.
     Failing fast: (first failure or None, seconds); else (every failure as
     {"gtest": [...], "pytest": [...]}, seconds).
-    skip: {"gtest": [...], "pytest": [...]}, tests left out (they fail unmutated)."""
+    skip: {"gtest": [...], "pytest": [...]}, tests left out (they fail unmutated).
+    stages: the suites to run (pytest alone for a mutation of Python alone)."""
     skip = skip or {}
     t = time.monotonic()
     failures = {"gtest": [], "pytest": []}
     for direct in (True, False):
-        for stage in ("gtest", "pytest"):
+        for stage in stages:
             log = os.path.join(scratch.logs, f"{tag}.{stage}{'.direct' if direct else ''}.log")
             if os.path.exists(log):
                 os.remove(log)
@@ -322,7 +365,8 @@ def run_one(scratch, m, timeout, skip=None):
     if not built:
         res.update(result=NO_BUILD, first_failure=f"see {blog}")
     else:
-        failed, res["test_s"] = run_suite(scratch, m["name"], timeout, skip)
+        failed, res["test_s"] = run_suite(scratch, m["name"], timeout, skip,
+                                          stages=("pytest",) if python_only(m) else ("gtest", "pytest"))
         res.update(result=CAUGHT if failed else NOT_CAUGHT, first_failure=failed or "")
     scratch.reset()  # the next build also undoes this mutation
     return res
@@ -385,7 +429,10 @@ def main(argv=None):
     ap.add_argument("--list", action="store_true", help="list the mutations and exit")
     ap.add_argument("--check", action="store_true",
                     help="apply each mutation to the scratch copy and check it changes its file (no build)")
-    ap.add_argument("--only", action="append", metavar="NAME", help="run only this mutation (repeatable)")
+    ap.add_argument("--manifest", default=MANIFEST, metavar="FILE",
+                    help="the catalogue of mutations (default tests/mutation/mutations.toml)")
+    ap.add_argument("--only", action="append", metavar="NAME",
+                    help="run only this mutation (repeatable; they run in the order given)")
     ap.add_argument("--no-baseline", action="store_true", help="skip the run of the unmutated suite")
     ap.add_argument("--strict-baseline", action="store_true",
                     help="stop if the unmutated suite fails (default: leave its failing tests out and say so)")
@@ -401,17 +448,19 @@ def main(argv=None):
     args = ap.parse_args(argv)
     argv = sys.argv[1:] if argv is None else argv
 
-    muts = load_mutations()
+    # SIGTERM as Ctrl-C: the child running is killed with its process group (sh), the scratch copy is reset
+    # by the next run.
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
+    if not os.path.isfile(args.manifest):
+        sys.exit(f"no manifest {args.manifest}")
+    muts = load_mutations(args.manifest)
     if args.list:
         w = max(len(m["name"]) for m in muts)
         for m in muts:
             print(f"{m['name']:<{w}}  {m['file']}\n{'':<{w}}  {m['description']}")
         return 0
     if args.only:
-        unknown = set(args.only) - {m["name"] for m in muts}
-        if unknown:
-            sys.exit(f"unknown mutation(s): {', '.join(sorted(unknown))} (see --list)")
-        muts = [m for m in muts if m["name"] in args.only]
+        muts = select(muts, args.only)
 
     scratch = Scratch(args.scratch, args.jobs)
     head, changed = scratch.prepare()

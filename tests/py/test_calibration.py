@@ -12,6 +12,7 @@ import pytest
 from ldem.study import beam_diagnosis, beams, concrete, mc2010
 
 
+@pytest.mark.direct
 def test_mc2010_fracture_energy_of_the_gregoire_concrete():
     # fib MC2010 eq. 5.1-9: 73 x 42.3^0.18 N/m
     assert mc2010.mc2010_fracture_energy(42.3e6) == pytest.approx(73 * 42.3 ** 0.18, rel=1e-12)
@@ -20,6 +21,7 @@ def test_mc2010_fracture_energy_of_the_gregoire_concrete():
         mc2010.mc2010_fracture_energy(0.0)
 
 
+@pytest.mark.direct
 def test_mc2010_properties_from_the_compressive_strength_alone():
     """fib MC2010 from f_cm: E_ci = 21.5 GPa (f_cm/10)^(1/3); f_ctm = 0.30 f_ck^(2/3)
     up to C50, 2.12 ln(1 + f_cm/10) above, f_ck = f_cm - 8 MPa; G_F = 73 f_cm^0.18."""

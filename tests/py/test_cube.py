@@ -244,3 +244,20 @@ def test_progress_line_shows_the_summary_energy_balance():
     for row in rows:
         bar.balance(row)
     assert bar.error() == r.summary["energy_balance_error"] > 0
+
+
+def test_a_small_cubes_progress_bar_never_flags_its_energy(capsys):
+    """The 0.06 m cube's balance is 8.7e-2 of the energy in play at its first
+    record (strain 6e-8) and below 1e-2 from the sixth on, and its summary's
+    1e-4: the bar, drawn on every record, never says ENERGY ERROR, where
+    weighed against the energy so far alone it did on the first five."""
+    from ldem.progress import ProgressBar
+
+    rows = []
+    result = ldem.run_cube(ldem.CubeTest(size=0.06, stop_at="load_loss", threads=1), progress=True,
+                           observers=[rows.append])
+    err = capsys.readouterr().err
+    assert "balance=" in err and "ENERGY ERROR" not in err
+    assert not result.summary["energy_error"]
+    alone = ProgressBar(1.0, enabled=False)  # the energy so far alone: the false alarm
+    assert any(alone.balance(row) > 0.01 and alone.flagged() for row in rows[:6])

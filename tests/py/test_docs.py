@@ -26,8 +26,7 @@ RESULT_PAGES = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(R
 # Commands run elsewhere, by the test named (it holds the command's own words).
 RUN_BY = {
     "yade-double -n -x scripts/yade_one_bar.py": ("test_yade_bridge.py", "yade_one_bar.py"),
-    "mkdir -p out/logs && yade-double-batch --job-threads 1 --log 'out/logs/@.log' scripts/size_effect.table "
-    "scripts/cube_tension.py": ("test_scenes.py", "yade-double-batch"),
+    "bash scripts/yade_batch.sh scripts/size_effect.table scripts/cube_tension.py": ("test_scenes.py", "yade_batch.sh"),
     "/usr/bin/python3 scripts/gallery.py": ("test_specimen_file.py", "scripts/gallery.py"),
 }
 # The two commands of the front door are the machine's set-up and CI's own (.ci/run), not a test's.

@@ -5,6 +5,7 @@ its energy balance says the bars and the damping took."""
 import json
 import math
 import os
+from types import SimpleNamespace
 
 import numpy as np
 import pytest
@@ -12,6 +13,7 @@ import pytest
 from ldem.study import concrete, fracture_energy as fe
 
 
+@pytest.mark.direct
 def test_the_beam_is_ten_modules_deep_and_never_less_than_50_mm():
     assert fe.depth(0.005) == pytest.approx(0.050)  # RILEM's beam in half size: the diagnosis's
     assert fe.depth(0.0025) == pytest.approx(0.050)  # 20 modules
@@ -22,6 +24,7 @@ def test_the_beam_is_ten_modules_deep_and_never_less_than_50_mm():
         assert abs(n - round(n)) < 1e-9 and round(n) % 2 == 0 and round(n) >= fe.MODULES
 
 
+@pytest.mark.direct
 def test_the_half_size_beam_at_5_mm_is_the_diagnosis_beam():
     d = fe.rilem_beam(concrete.lattice_material(37.5e9, 0.21, 1.14e-4, 143.24), 0.005, 1).description
     assert d["shape"]["size"] == pytest.approx([0.42, 0.05, 0.05])
@@ -30,6 +33,7 @@ def test_the_half_size_beam_at_5_mm_is_the_diagnosis_beam():
     assert right - left - 0.005 == pytest.approx(0.40)  # the span, 8 D: the planes lie half a module outside it
 
 
+@pytest.mark.direct
 def test_the_work_of_fracture_is_the_area_under_the_load_over_the_ligament():
     """A triangle of 1 kN over a deflection of 0.2 mm: W = 0.1 J over (D - a) b = 25 x 50 mm^2 = 80 N/m."""
     D = 0.05
@@ -38,6 +42,7 @@ def test_the_work_of_fracture_is_the_area_under_the_load_over_the_ligament():
     assert fe.work_of_fracture(curve, D) == pytest.approx(0.1 / (0.025 * 0.05), rel=1e-12)
 
 
+@pytest.mark.direct
 def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
     stop = fe.LoadGone(0.02)  # no window: the last record alone
     row = lambda t, support, platen: {"time_s": t, "stress_MPa": support, "stress_top_MPa": platen,  # noqa: E731
@@ -48,6 +53,7 @@ def test_load_gone_stops_once_support_and_platen_carry_less_than_the_fraction():
     assert stop(row(3.0, 0.01, 0.01)) is False
 
 
+@pytest.mark.direct
 def test_load_gone_waits_through_a_ringing_load_s_dips():
     """A load that rings about 0.3 of its peak dips below 2 % at single
     records; averaged over the window (1 s here) it is not gone until its
@@ -66,6 +72,37 @@ def test_load_gone_waits_through_a_ringing_load_s_dips():
         t += 0.01
         going = stop({"time_s": t, "stress_MPa": 0.0, "stress_top_MPa": 0.0, "broken_bars": 3})
     assert 4.0 + 0.8 < t < 4.0 + 1.02
+
+
+def _ringing_rows():
+    """A load that rises to 1 in 1 s, rings about 0.3 (periods of 0.2 s) until 4 s, then is gone: a record every 10 ms."""
+    rows = []
+    for k in range(600):
+        t = k * 0.01
+        load = t if t <= 1 else 0.3 + 0.35 * math.sin(2 * math.pi * (t - 1) / 0.2) if t <= 4 else 0.0
+        rows.append({"time_s": t, "stress_MPa": load, "stress_top_MPa": load, "broken_bars": 0 if t <= 1 else 3})
+    return rows
+
+
+@pytest.mark.direct
+@pytest.mark.parametrize("restart", [50, 150, 300, 420])
+def test_a_restarted_rilem_case_stops_on_the_row_a_straight_run_stops(restart):
+    """RilemCase.run on a restart hands LoadGone the rows so far (the peak and
+    its window): the case stops on the row a straight run stops on, the
+    row about a window (two periods, 1 s here) after the load is gone at 4 s.
+    A LoadGone that had not seen them would take a ringing 0.65 for the peak
+    (restarted past the peak) and stop elsewhere."""
+    rows = _ringing_rows()
+    case = fe.RilemCase(concrete.lattice_material(30e9, 0.2, 1.0e-4, 100.0), 0.01, 1)
+
+    def stops_on(observers, simulation, previous_rows):
+        stop = observers[-1]
+        return next(k for k in range(len(previous_rows), len(rows)) if stop(rows[k]) is False)
+    case.test.run = stops_on
+    one_period = SimpleNamespace(omega1=2 * math.pi / 0.5)
+    straight = case.run(simulation=one_period)
+    assert 4.0 + 0.8 < rows[straight]["time_s"] < 4.0 + 1.02
+    assert case.run(simulation=one_period, previous_rows=rows[:restart]) == straight
 
 
 def test_a_coarse_beam_runs_to_its_stop_and_its_g_f_is_the_drive_s_work_over_the_ligament(tmp_path, monkeypatch):

@@ -1,8 +1,11 @@
 """Fuzz the command line: random and malformed flags and values (a fixed seed,
-a fixed number of examples) through `ldem cube`'s own entry point. Whatever
-comes in, the answer is exit 0 (a run, with a done summary), 1 (a run flagged
-or failed, its summary saying so) or 2 (one line naming the problem): never a
-traceback, a hang or a summary claiming success for a failed run."""
+a fixed number of examples) through `ldem cube`'s own entry point, and
+specimen files broken at random: lines replaced, dropped, doubled, cut, keys
+added, geometry (a cutout, a notch, a group, the platen) put anywhere in and
+around the box, values out of range. Whatever comes in, the answer is exit 0
+(a run, with a done summary), 1 (a run flagged or failed, its summary saying
+so) or 2 (one line naming the problem): never a traceback, a hang or a
+summary claiming success for a failed run."""
 import json
 import random
 
@@ -69,7 +72,7 @@ probes = {tip = {b = [0.04, 0.04, 0.04], direction = "z"}}
 strain_rate = 0.5
 [run]
 stop_at = "load_loss"
-final_strain = 3e-4
+final_strain = 1e-4
 """
 TOML_VALUES = ["0", "-1", "1e300", "nan", "inf", '"x"', '"z-"', '"cylinder"', "[]", "[1, 2, 3]", "{}", "{z = 1.0}",
                "true", '"dogbone"', "0.02", '["x", "q"]', "[0.0, 0.0, 0.0]", '"bottom"', "{a = [0, 0, 0]}", '"']
@@ -78,13 +81,49 @@ TOML_KEYS = ["kind", "L0", "size", "notch", "face", "plane", "box", "point", "un
              "diameter", "axis", "neck", "radius", "file", "title"]
 
 
+# Geometry anywhere in and around the 0.04 m box, on its faces, beyond them, and absurd.
+COORDS = ["0", "0.01", "0.02", "0.04", "-0.02", "0.06", "1.0", "-1e-9", "0.04000001", "5.0", "nan", "inf"]
+LENGTHS = ["0", "0.01", "0.02", "0.04", "0.05", "-0.01", "5.0", "nan"]
+MATERIAL = ["E", "nu", "rho", "Gf_mean", "Gf_cv", "eps_p", "c_a", "corr_length"]
+OUT_OF_RANGE = ["-1", "0", "0.5", "0.6", "1", "1e300", "1e-300", "nan", "-inf", "99999999999999999999"]
+
+
+def _point(rng) -> str:
+    return "[" + ", ".join(rng.choice(COORDS) for _ in range(3)) + "]"
+
+
+def _geometry(rng, lines: list, op: int) -> None:
+    """A cutout, a notch, a group, the platen moved, or a material value out of range, put into lines."""
+    shape = next((k for k, line in enumerate(lines) if line == "[shape]"), None)
+    if op == 5 and shape is not None:
+        lines.insert(shape + 1, f"cutout = {{min = {_point(rng)}, max = {_point(rng)}}}")
+    elif op == 6 and shape is not None:
+        lines.insert(shape + 1, f"notch = {{depth = {rng.choice(LENGTHS)}, width = {rng.choice(LENGTHS)}, "
+                                f"at = {rng.choice(COORDS)}}}")
+    elif op == 7:  # a group selecting anywhere, held or driven
+        where = rng.choice([f"box = {{min = {_point(rng)}, max = {_point(rng)}}}", f"point = {_point(rng)}",
+                            f"plane = {{{rng.choice('xyzq')} = {rng.choice(COORDS)}}}",
+                            f"line = {{x = {rng.choice(COORDS)}, z = {rng.choice(COORDS)}}}"])
+        lines += ["[groups.extra]", where, rng.choice(['fix = ["z"]', "drive = {z = 1.0}", 'fix = ["x", "y", "z"]'])]
+    elif op == 8:  # the platen (the driven upper face) moved
+        top = next((k for k, line in enumerate(lines) if line == 'face = "z+"'), None)
+        if top is not None:
+            lines[top] = rng.choice([f"box = {{min = {_point(rng)}, max = {_point(rng)}}}",
+                                     f"plane = {{z = {rng.choice(COORDS)}}}", f"point = {_point(rng)}"])
+    else:  # a material value out of range
+        lines += ["[material]", f"{rng.choice(MATERIAL)} = {rng.choice(OUT_OF_RANGE)}"]
+
+
 def _mutate(rng) -> str:
     lines = SPECIMEN.splitlines()
     for _ in range(rng.randint(1, 3)):
         if not lines:
             break
         i = rng.randrange(len(lines))
-        op = rng.randrange(5)
+        op = rng.randrange(10)
+        if op >= 5:
+            _geometry(rng, lines, op)
+            continue
         if op == 0:  # a value replaced
             if "=" in lines[i]:
                 lines[i] = lines[i].split("=")[0] + "= " + rng.choice(TOML_VALUES)
@@ -99,22 +138,21 @@ def _mutate(rng) -> str:
     return "\n".join(lines) + "\n"
 
 
-@pytest.mark.parametrize("k", range(60))
+@pytest.mark.parametrize("k", range(200))
 def test_random_specimen_files_never_traceback(k, tmp_path, capsys):
     rng = random.Random(5000 + k)
     path = tmp_path / "s.toml"
     path.write_text(_mutate(rng))
     args = ["run", str(path), "--out", str(tmp_path / "o"), "--no-progress", "--no-plots", "--set", "threads=1"]
-    try:
-        code = cli.main(args)
-    except SystemExit as e:
-        code = e.code
+    code = _within_limit(lambda: cli.main(args))
     out, err = capsys.readouterr()
     text = path.read_text()
     assert "Traceback" not in err and "Traceback" not in out, (text, err)
     assert code in (0, 1, 2), (text, code, err)
     if code == 2:
-        assert len(err.strip().splitlines()) == 1 and str(path) in err, (text, err)
+        errors = [line for line in err.strip().splitlines() if ": warning: " not in line]
+        # (a key's error names the file and line; one of the set-up, a mechanism or bars all brittle, does not)
+        assert len(errors) == 1 and errors[0].startswith("ldem run: error: "), (text, err)
     summary = tmp_path / "o" / "summary.json"
     if summary.exists():
         s = json.loads(summary.read_text())

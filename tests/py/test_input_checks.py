@@ -2,14 +2,16 @@
 lattice's memory estimate for ldem cube, ldem run and the Python API (one C++
 function, pkg/ldem/Lattice.hpp checkFits), and the bounds that tie parameters
 (pkg/ldem/Relations.hpp), each refused with its message and exit code 2."""
+import math
 import os
+import re
 import time
 
 import pytest
 
 import ldem
 from ldem import _core
-from conftest import ROOT
+from conftest import ROOT, subprocess_env
 
 TINY = ["--size", "0.04", "--threads", "1", "--no-progress", "--no-plots"]
 
@@ -46,6 +48,7 @@ def test_a_cube_beyond_any_rank_gets_no_mpi_advice(cli, tmp_path):
     assert "MPI" not in line
 
 
+@pytest.mark.direct
 def test_mpi_advice_only_when_the_memory_holds_the_lattice():
     """Past 32-bit node ids (2^31 bars) one process cannot number the lattice;
     ranks on this machine can hold it only if its memory can."""
@@ -58,16 +61,47 @@ def test_mpi_advice_only_when_the_memory_holds_the_lattice():
     assert _core.lattice_misfit(20, 20, 20, 1e12) == ""
 
 
-def test_out_of_memory_under_a_limit_is_one_line(cli, tmp_path):
-    """Under ulimit -v below the estimate's margin an allocation may still fail: one line, exit 2."""
+def _under_ulimit(room: float, code: str, *args):
+    """Python `code` in a subprocess with ldem imported, its address space then
+    limited (ulimit -v, RLIMIT_AS) to its size plus `room` bytes; sys.argv[1:] = args."""
     import subprocess
     import sys
 
-    code = ("import resource, sys; resource.setrlimit(resource.RLIMIT_AS, (1 << 30, resource.RLIM_INFINITY)); "
-            "from ldem import cli; sys.exit(cli.main(sys.argv[1:]))")
-    r = subprocess.run([sys.executable, "-c", code, "cube", "--size", "3", "--out", str(tmp_path / "o"),
-                        "--no-progress", "--threads", "1"], capture_output=True, text=True, timeout=120)
-    assert _error(r) == "ldem cube: error: out of memory building the specimen: it does not fit this process"
+    limit = ("import os, resource, sys; from ldem import _core, cli; "
+             "size = int(open('/proc/self/statm').read().split()[0]) * os.sysconf('SC_PAGE_SIZE'); "
+             f"resource.setrlimit(resource.RLIMIT_AS, (size + {room:.0f}, resource.RLIM_INFINITY)); ")
+    return subprocess.run([sys.executable, "-c", limit + code, *args], capture_output=True, text=True, timeout=120,
+                          env=subprocess_env())
+
+
+def test_memory_is_checked_against_the_address_space_limit(tmp_path):
+    """Under ulimit -v the room is the limit less the process's size, not the
+    machine's memory (25 GB here, where a 196 M-bar beam under a 4 GB limit
+    built for 65 s before an allocation failed): the 150^3 cube (44 M bars,
+    about 4.4 GB) is refused at once under 2 GB of room, naming the limit; the
+    80^3 cube (0.67 GB) fits it."""
+    r = _under_ulimit(2e9, "print(*_core.memory_limit(), sep=';'); _core.check_fits(80, 80, 80)")
+    assert r.returncode == 0, r.stderr
+    room, which = r.stdout.strip().split(";")
+    assert which == "the address-space limit (ulimit -v) leaves" and 1.9e9 < float(room) <= 2e9
+    t0 = time.perf_counter()
+    r = _under_ulimit(2e9, "sys.exit(cli.main(sys.argv[1:]))", "cube", "--size", "3", "--out", str(tmp_path / "o"),
+                      "--no-progress", "--threads", "1")
+    assert re.fullmatch(r"ldem cube: error: a lattice of 150 x 150 x 150 modules \(4\d{7} bars\) needs about 4\.\d+ GB; "
+                        r"the address-space limit \(ulimit -v\) leaves 1\.9\d GB", _error(r)), r.stderr
+    assert time.perf_counter() - t0 < 30 and not (tmp_path / "o" / "curve.csv").exists()
+
+
+@pytest.mark.direct
+def test_the_memory_limit_is_the_machines_available_memory_without_a_smaller_one():
+    """With no ulimit -v and no cgroup limit below it, the room is MemAvailable (/proc/meminfo)."""
+    room, which = _core.memory_limit()
+    with open("/proc/meminfo") as f:
+        available = next(float(line.split()[1]) * 1024 for line in f if line.startswith("MemAvailable:"))
+    if which == "this machine has available":
+        assert room == pytest.approx(available, rel=0.2)  # (it moves with the other processes)
+    else:  # a container's limit, below what the machine has
+        assert which == "the cgroup's memory limit (memory.max) leaves" and room <= 1.2 * available
 
 
 BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 L / (2 A_f) (4.01199 N/m"
@@ -114,6 +148,21 @@ def test_the_help_states_the_rules_with_true_numbers(cli):
         assert rule in text, rule
 
 
+@pytest.mark.direct
+def test_the_ramp_time_is_held_to_the_rate_rate_periods_derives():
+    """rate_periods N sets the rate from the specimen's omega_1 at set-up:
+    eps_p / strain_rate = N T1. The smooth start's bound (ramp_time at most
+    eps_p / strain_rate, pkg/ldem/Relations.hpp) is that rate's: 3 T1 here,
+    a tenth of the bound of the strain_rate given beside it (0.02 /s)."""
+    base = dict(size=0.04, rate_periods=3.0, strain_rate=0.02, threads=1)
+    T1 = 2 * math.pi / ldem.CubeTest(**base).simulation().omega1
+    assert ldem.CubeTest(**base).eps_p / 0.02 > 10 * 3 * T1  # the rate given would allow 10 times the ramp
+    assert ldem.CubeTest(**base, ramp_time=0.99 * 3 * T1).simulation().ramp_time == 0.99 * 3 * T1
+    with pytest.raises(ValueError, match=r"ramp_time .* s is above eps_p / strain_rate = .* s: the smooth start"):
+        ldem.CubeTest(**base, ramp_time=1.01 * 3 * T1).simulation()
+
+
+@pytest.mark.direct
 def test_raising_c_a_is_what_lowers_the_brittle_bound():
     """The advice of the messages above: G_b = E A eps_p^2 L / (2 A_f) with A_f = c_a L0^2, so twice c_a halves it."""
     low, high = (ldem.CubeTest(c_a=c).params().material for c in (0.1, 0.2))

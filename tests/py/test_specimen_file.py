@@ -270,6 +270,16 @@ def test_keyword_arguments_build_what_the_file_builds():
         SpecimenTest.of(colour=1, **data)
 
 
+@pytest.mark.direct
+def test_a_files_default_rate_strains_eps_p_in_twelve_of_its_own_periods():
+    """The rate a file without one is driven at, set up (no step run):
+    strain_rate = eps_p omega_1 / (2 pi 12), from the specimen's own omega_1."""
+    test = SpecimenTest(example("dogbone"), overrides={"threads": 1})
+    sim = test.simulation()
+    eps_p = test.build.params["eps_p"]
+    assert sim.strain_rate == pytest.approx(eps_p * sim.omega1 / (2 * np.pi * 12), rel=1e-12)
+
+
 def test_a_file_without_a_rate_is_driven_from_its_own_period():
     """Rule (c) is a file's default rate (specimenOwnDefaults, kSpecimenRatePeriods in
     dynamics/QuasiStatic.hpp): eps_p in 12 of the specimen's own periods. A strain_rate

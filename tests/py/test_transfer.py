@@ -54,6 +54,7 @@ def _data(folder):
                    header="cmod_mm,load_mean_kN,load_min_kN,load_max_kN", comments="")
 
 
+@pytest.mark.direct
 @pytest.mark.parametrize("on", [(50.0, 0.0), (50.0, 0.5), (100.0, 0.2)])
 def test_the_fit_sees_its_own_beam_only(tmp_path, monkeypatch, on):
     """transfer(): the fit gets the calibration beam's measurement, its evaluate
@@ -88,6 +89,26 @@ def test_the_fit_sees_its_own_beam_only(tmp_path, monkeypatch, on):
     assert os.path.isfile(tmp_path / "out" / f"on_{whole_curves.beam_name(*on)}" / "fit.json")
 
 
+@pytest.mark.direct
+@pytest.mark.parametrize("on,own", [((50.0, 0.0), {(0.05, 0.5): 0.02, (0.1, 0.2): 0.03}),
+                                    ((100.0, 0.2), {(0.05, 0.0): 0.015, (0.05, 0.5): 0.02})])
+def test_each_predicted_beam_runs_past_four_times_its_own_cmod_at_the_peak(tmp_path, monkeypatch, on, own):
+    """The report reads each predicted beam at 1, 2, 4 times that beam's own
+    measured CMOD at the peak (measured.csv: 0.015, 0.02, 0.03 mm); its runs
+    stop at PAST = 1.1 times the last, 4.4 CMOD_peak: of their own beam, not
+    of the beam the fit was made on."""
+    data = str(tmp_path / "data")
+    _data(data)
+    predicted = []
+    monkeypatch.setattr(transfer, "evaluator", lambda folder, t, jobs, make, log=print: lambda m: [t.peak_kN, t.work_J])
+    monkeypatch.setattr(transfer, "run_cases", lambda cases, out, jobs, log: predicted.extend(cases))
+    transfer.transfer(str(tmp_path / "out"), data, on, START, seeds=1, log=lambda s: None)
+    assert cq.MULTIPLES[-1] == 4 and whole_curves.PAST == 1.1
+    assert {(c.D, c.notch): c.limit for c in predicted} == {b: pytest.approx(4.4e-3 * x, rel=1e-12)
+                                                            for b, x in own.items()}
+
+
+@pytest.mark.direct
 def test_a_finer_module_reaches_the_fit_and_the_predictions_and_only_the_beams_asked_are_predicted(
         tmp_path, monkeypatch):
     """transfer(L0=2.5 mm, predict=[D50_n0]) on D50_n0.5 (the module check of
@@ -114,6 +135,7 @@ def test_a_finer_module_reaches_the_fit_and_the_predictions_and_only_the_beams_a
         assert json.load(f)["L0"] == 0.0025
 
 
+@pytest.mark.direct
 def test_a_targets_work_is_that_of_its_measured_mean_curve(tmp_path):
     data = str(tmp_path / "data")
     _data(data)
@@ -123,6 +145,7 @@ def test_a_targets_work_is_that_of_its_measured_mean_curve(tmp_path):
     assert math.isnan(transfer.target(data, (100.0, 0.2)).work_J)
 
 
+@pytest.mark.direct
 def test_broydens_update_solves_a_strongly_coupled_log_linear_model_within_five_rounds():
     """A power law is linear in logarithms: Broyden's method solves a linear
     system of n unknowns in at most 2n steps (Gay 1979). Here the peak and the
