@@ -192,6 +192,9 @@ def test_the_study_s_curves_and_mean_curves_zoom_on_the_peak(tmp_path):
     whole, zoom = fig.axes
     assert zoom.get_xlim() == pytest.approx((0.0, reach))
     assert [line.get_ydata().max() for line in zoom.get_lines()] == pytest.approx([1.9, 1.8], rel=0.01)
+    # The whole run on a log strain axis shows the peaks too (a linear grid to 0.06 would step over them).
+    assert whole.get_xscale() == "log"
+    assert [line.get_ydata().max() for line in whole.get_lines()] == pytest.approx([1.9, 1.8], rel=0.03)
     assert [t.get_text() for t in whole.get_legend().get_texts()] == ["0.04 m: mean of 2 specimens",
                                                                       "0.08 m: mean of 1 specimen"]
     near = curve["mean_strain"] <= 0.99 * plots.FAR * reach  # a run that stops near its peak: no zoom
