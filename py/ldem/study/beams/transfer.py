@@ -24,12 +24,12 @@ from typing import Callable, List, Sequence, Tuple
 
 import numpy as np
 
-from .. import io
-from .beam_comparison import measured_curve
-from .curve_quantities import MULTIPLES, quantities, work_to
-from .curve_report import figure, table_lines
-from .beams import L0 as BEAMS_L0
-from .executors import run_cases
+from ... import io
+from .comparison import measured_curve
+from ..curve_quantities import MULTIPLES, quantities, work_to
+from ..curve_report import figure, table_lines
+from .cases import L0 as BEAMS_L0
+from ..executors import run_cases
 from .whole_curves import (WholeCurve, against_measured, beam_name, gauge_curve, gauge_label, measured,
                            measured_beams)
 

@@ -35,12 +35,12 @@ from typing import List
 
 import numpy as np
 
-from .. import _core, io
-from ..specimen import SpecimenTest
-from .cases import Named
-from .executors import run_cases
-from .options import seed_count
-from .registry import Study, register
+from ... import _core, io
+from ...specimen import SpecimenTest
+from ..cases import Named
+from ..executors import run_cases
+from ..options import seed_count
+from ..registry import Study, register
 
 HALF_D = 0.025  # half the smallest depth [m]: RILEM's beam in half size, D = 50 mm
 MODULES = 10  # the least depth in modules
@@ -171,7 +171,7 @@ def report_lines(r: dict, name: str) -> List[str]:
 
 
 def figure(out: str, r: dict, name: str) -> str:
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     D = r["beam"]["D_m"]

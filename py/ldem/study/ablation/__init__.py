@@ -17,12 +17,12 @@ from typing import Callable, List, Sequence
 
 import numpy as np
 
-from .. import _core, io
-from ..cube import CubeTest
-from .options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
-from .cases import Named, case_name
-from .executors import run_cases
-from .registry import Study, register
+from ... import _core, io
+from ...cube import CubeTest
+from ..options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
+from ..cases import Named, case_name
+from ..executors import run_cases
+from ..registry import Study, register
 
 VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
             "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9},

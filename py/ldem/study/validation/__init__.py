@@ -27,17 +27,17 @@ from typing import Callable, Dict, List
 
 import numpy as np
 
-from .. import io
-from ..specimen import SpecimenTest
-from .concrete import calibrate, slope
-from .mc2010 import lab_values
-from .curve_report import figure as curve_figure, summarize, table_lines
-from .beams import PastThePeak
-from .cases import Named
-from .executors import run_cases
-from .options import add_seeds, seed_count
-from .registry import Study, register
-from .tables import mean_cv
+from ... import io
+from ...specimen import SpecimenTest
+from ..concrete import calibrate, slope
+from ..mc2010 import lab_values
+from ..curve_report import figure as curve_figure, summarize, table_lines
+from ..beams.cases import PastThePeak
+from ..cases import Named
+from ..executors import run_cases
+from ..options import add_seeds, seed_count
+from ..registry import Study, register
+from ..tables import mean_cv
 
 
 @dataclass(frozen=True)
@@ -181,7 +181,7 @@ def write_prediction(out: str, name: str, seeds: int, weight: float = 0.0) -> di
 
 
 def _figure(out: str, name: str, curves: dict, seeds: int, x_label: str) -> None:
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6, 4))

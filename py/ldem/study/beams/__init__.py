@@ -1,4 +1,4 @@
-"""`ldem study beams`: the Grégoire et al. (2013) beams (ldem.study.beams has
+"""`ldem study beams`: the Grégoire et al. (2013) beams (ldem.study.beams.cases has
 the why of each choice), one sub-command per step, each in the study folder
 OUT (default results/beams/gregoire2013, from where it is run):
 
@@ -20,15 +20,15 @@ from __future__ import annotations
 import json
 import os
 
-from .beam_comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
-from .beam_diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
-from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
-from .beam_tables import write_curve_tables, write_size_effect
-from .beams import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
+from .comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
+from .diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
+from .report import cracks_mosaic, curves_figure, size_effect_figure
+from .tables import write_curve_tables, write_size_effect
+from .cases import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
                     series_tests, uniform_tests, write_predictions)
-from .concrete import calibrate as calibrate_concrete
-from .options import add_seeds, parameter_option, parse_names, seed_count
-from .registry import Study, register
+from ..concrete import calibrate as calibrate_concrete
+from ..options import add_seeds, parameter_option, parse_names, seed_count
+from ..registry import Study, register
 from .transfer import report as transfer_report, transfer as run_transfer
 from .whole_curves import beam_name, measured_beams, run as run_whole_curves
 

@@ -9,8 +9,8 @@ from typing import List, Sequence
 
 import numpy as np
 
-from ..cube import CubeTest
-from .tables import mean_cv
+from ...cube import CubeTest
+from ..tables import mean_cv
 
 FINE_L0 = 0.02                       # the size-effect study's module [m]
 VARIANTS = ("plain", "law", "c_a", "criterion", "calibrated")

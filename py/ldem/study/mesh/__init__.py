@@ -44,16 +44,16 @@ import math
 import os
 from typing import Dict, List, Optional, Sequence
 
-from .. import io
-from ..cube import CubeTest
-from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
-from .mesh_report import write_mesh_report
-from .options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
-                      parse_loads, parse_names, run_options, seed_count, values_option)
-from .registry import Study, register
-from .mesh_tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
-                          summarize, variant_law)
-from .tables import case_row
+from ... import io
+from ...cube import CubeTest
+from ..located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
+from .report import write_mesh_report
+from ..options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
+                       parse_loads, parse_names, run_options, seed_count, values_option)
+from ..registry import Study, register
+from .tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
+                     summarize, variant_law)
+from ..tables import case_row
 
 MESH_SIZES = (0.48, 0.72, 0.96)      # the cubes predicted with coarse modules [m]
 COARSE_MODULES = (0.04, 0.06, 0.08, 0.12)
@@ -262,4 +262,4 @@ def cmd_mesh(args) -> int:
 
 register(Study("mesh", "large cubes with coarse modules and the study's criterion, against the fine lattice",
                add_arguments, cmd_mesh, "Fine cubes of side L give the law of a coarse module of side L "
-                                        "(ldem/study/mesh.py); coarse runs of each variant against the fine lattice."))
+                                        "(ldem.study.mesh says why); coarse runs of each variant against the fine lattice."))

@@ -1,6 +1,6 @@
 """The beam series of Grégoire, Rojas-Solano and Pijaudier-Cabot (2013),
 "Failure and size effect for notched and unnotched concrete beams" (issue 13
-item 6), as a study (`ldem study beams`: ldem.study.beam_command): a blind
+item 6), as a study (`ldem study beams`: ldem.study.beams): a blind
 prediction of geometrically similar beams in three-point bending, depth D =
 50, 100 and 200 mm, span 2.5 D, length 3.5 D, thickness 50 mm, notches 0, D/5
 and D/2, six random specimens each, with the material taken only from the
@@ -36,14 +36,14 @@ import statistics
 from dataclasses import dataclass
 from typing import Callable, List, Sequence, Tuple
 
-from .. import io
-from ..markdown import num_cell
-from .concrete import prism as tension_prism
-from .mc2010 import mc2010_fracture_energy
-from ..specimen import SpecimenTest
-from .cases import Named
-from .executors import run_cases
-from .tables import mean_cv
+from ... import io
+from ...markdown import num_cell
+from ..concrete import prism as tension_prism
+from ..mc2010 import mc2010_fracture_energy
+from ...specimen import SpecimenTest
+from ..cases import Named
+from ..executors import run_cases
+from ..tables import mean_cv
 
 E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
 GF = mc2010_fracture_energy(FC)  # fib MC2010 eq. 5.1-9 [N/m]

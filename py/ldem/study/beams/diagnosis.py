@@ -20,11 +20,11 @@ import statistics
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Sequence, Tuple
 
-from .. import io
-from ..markdown import mean_cv_cell
-from .beams import GF, PREDICTION, Beam, Variant, calibrate
-from .executors import run_cases
-from .tables import mean_cv
+from ... import io
+from ...markdown import mean_cv_cell
+from .cases import GF, PREDICTION, Beam, Variant, calibrate
+from ..executors import run_cases
+from ..tables import mean_cv
 
 BEAMS = ((0.05, 0.0), (0.05, 0.5), (0.1, 0.2))
 MEASURED_KN = {(0.05, 0.0): 4.649, (0.05, 0.5): 0.979, (0.1, 0.2): 4.496}  # ../shared/data/gregoire2013/measured.csv
