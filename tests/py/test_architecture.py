@@ -152,6 +152,75 @@ def test_no_long_module_without_its_reason():
         ", ".join(long)
 
 
+
+# -- ldem.study: one folder per registered study, the shared modules beside them -----------
+STUDY = os.path.join(PACKAGE, "study")
+
+
+def _registered_studies(study=STUDY):
+    """{registered name: the module that registers it}, read from every register(Study("name", ...)) call."""
+    found = {}
+    for name, path in _modules(os.path.dirname(study)):
+        if not name.startswith("ldem.study"):
+            continue
+        for node in ast.walk(ast.parse(open(path).read())):
+            if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "register" and node.args \
+                    and isinstance(node.args[0], ast.Call) and getattr(node.args[0].func, "id", "") == "Study":
+                found[ast.literal_eval(node.args[0].args[0])] = name
+    return found
+
+
+def _study_shape(study=STUDY):
+    """What breaks the study package's shape: a registered study that is not
+    registered by the __init__ of its own folder (its name, a hyphen made an
+    underscore), a folder that is no registered study, and a shared module
+    (a file at study/'s top) that imports a study's folder."""
+    prefix = "ldem.study."
+    registered = _registered_studies(study)
+    folders = {f for f in os.listdir(study) if os.path.isfile(os.path.join(study, f, "__init__.py"))}
+    wrong = [f"study {n!r} is registered in {m}, not in {prefix}{n.replace('-', '_')} (its folder's __init__.py)"
+             for n, m in sorted(registered.items()) if m != prefix + n.replace("-", "_")]
+    wrong += [f"study/{f}/ is a folder of no registered study" for f in sorted(folders)
+              if f not in {n.replace("-", "_") for n in registered}]
+    _, graph = _graph(os.path.dirname(study))
+    for mod, deps in sorted(graph.items()):
+        parts = mod.split(".")
+        if parts[:2] != ["ldem", "study"] or len(parts) != 3 or parts[2] in folders:
+            continue  # not a shared module (ldem.study itself, the facade, imports every study)
+        wrong += [f"{mod} (shared) imports the study {d}" for d in sorted(deps)
+                  if d.startswith(prefix) and d.split(".")[2] in folders]
+    return wrong
+
+
+def test_each_registered_study_is_a_folder_of_its_name_and_the_shared_modules_import_none():
+    """`ldem study NAME` is study/NAME/ (size-effect: size_effect/): its
+    command, cases, tables and report in one folder; what studies share
+    (cases, executors, tables, options, ...) sits at study/'s top level and
+    imports no study."""
+    assert {"size-effect", "beams", "seed-settings"} <= set(_registered_studies()), _registered_studies()
+    wrong = _study_shape()
+    assert not wrong, "the study package's shape:\n" + "\n".join(wrong)
+
+
+def test_the_study_check_sees_a_flat_study_a_stray_folder_and_a_shared_module_above_a_study(tmp_path):
+    study = tmp_path / "ldem" / "study"
+    for folder in ("fine", "stray", "flat_one"):
+        (study / folder).mkdir(parents=True)
+    (tmp_path / "ldem" / "__init__.py").write_text("")
+    (study / "__init__.py").write_text("from . import fine, flat\n")
+    (study / "registry.py").write_text("def register(s):\n    return s\n")
+    (study / "cases.py").write_text("from .fine import helper\n")
+    (study / "fine" / "__init__.py").write_text("from ..registry import Study, register\n"
+                                                "register(Study('fine', 'line', None, None))\n")
+    (study / "stray" / "__init__.py").write_text("")
+    (study / "flat_one" / "__init__.py").write_text("")
+    (study / "flat.py").write_text("from .registry import Study, register\n"
+                                   "register(Study('flat-one', 'line', None, None))\n")
+    assert _study_shape(str(study)) == [
+        "study 'flat-one' is registered in ldem.study.flat, not in ldem.study.flat_one (its folder's __init__.py)",
+        "study/stray/ is a folder of no registered study",
+        "ldem.study.cases (shared) imports the study ldem.study.fine"]
+
 # What a script may not do: run cases side by side or keep case folders (ldem.study does).
 CASE_RUNNER_IMPORTS = {"multiprocessing", "concurrent.futures", "distributed", "dask"}
 CASE_RUNNER_NAMES = {"run_case", "run_cases", "run_all", "case_dir", "finished", "is_finished", "_done"}
