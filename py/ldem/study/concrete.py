@@ -1,6 +1,6 @@
-"""The lattice's own concrete, measured by virtual standard tests (issue 28):
-the direct tension prism 50 x 50 x 100 mm of the beams' calibration, pulled
-to separation, gives what a laboratory would report of the material it stands
+"""The lattice's own concrete, measured by virtual standard tests: the
+direct tension prism 50 x 50 x 100 mm of the beams' calibration, pulled to
+separation, gives what a laboratory would report of the material it stands
 for:
 - E and nu from two gauges at mid-height (axial over 50 mm, lateral across
   the 50 mm width), fitted between 20 % and 60 % of the peak on the rising
@@ -100,8 +100,8 @@ def measure(material: dict, L0: float, seeds: Sequence[int] = (1, 2, 3), stop_at
     return out
 
 
-# The calibration from standard properties (issue 28, item 4; docs/calibration.md
-# has the reasoning and the sources). Fixed before any new blind prediction.
+# The calibration from standard properties (docs/calibration.md has the
+# reasoning and the sources). Fixed before any new blind prediction.
 GF_INITIAL_SHARE = 0.4  # G_f / G_F: Bažant & Becq-Giraudon (2002), mean G_F / G_f = 2.5
 KINK_STRESS = 0.2  # sigma_k / f_t of the bilinear law: fib MC2010 eq. 5.1-10
 GF_CV, C_A = 1.0, 0.1385  # the study's random field and fracture area (LDEM_SPEC section 6)

@@ -1,10 +1,10 @@
-"""Why the large uniform cubes are weaker (issue 10, item 7): one factor at a
-time on a cube (both loads), each run stopped past its peak. Per run: peak,
-its strain, damaged and broken bars at the peak (pre-peak nonlinearity) and
-where the damage is (mean height of the damaged-or-broken bars over H, and
-the share within one module of the lower face), kept in the case's
-summary.json under "ablation"; ablation.jsonl (a line per run) and the
-markdown table of the means per load and variant, against "base".
+"""Why the large uniform cubes are weaker: one factor at a time on a cube
+(both loads), each run stopped past its peak. Per run: peak, its strain,
+damaged and broken bars at the peak (pre-peak nonlinearity) and where the
+damage is (mean height of the damaged-or-broken bars over H, and the share
+within one module of the lower face), kept in the case's summary.json under
+"ablation"; ablation.jsonl (a line per run) and the markdown table of the
+means per load and variant, against "base".
 
     ldem study ablation --out DIR [--size 0.48] [--seeds 3] [--loads L,..] [--variants V,..] [--jobs J]
     ldem study ablation --table RUNS.jsonl      the markdown table of those runs"""

@@ -6,9 +6,9 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams predict --eps-p E [--out OUT] [--seeds 6] [--jobs J]   cases/, predictions.csv
     ldem study beams uniform --eps-p E [--out OUT] [--jobs J]       G_f CV 0: cases_cv0/
     ldem study beams curves [--out OUT] [--seeds 6]                 curves/*.csv, curves.png
-    ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (beam_comparison)
+    ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (comparison)
     ldem study beams size-effect [--out OUT]                        size_effect.md|csv|png, cracks.png
-    ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
+    ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (diagnosis)
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
     ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
     ldem study beams transfer [--on D50_n0,...] [--predict ...] [--L0 M] [--seeds 6] [--jobs J]   OUT/transfer/
@@ -188,12 +188,12 @@ def add_arguments(b) -> None:
                                       "comparison.md|png"))
     command("size-effect", size_effect, "Bažant's law fitted per notch, the unnotched slope, the uniform-G_f "
                                         "beams beside them: size_effect.md|csv|png, cracks.png")
-    g = command("diagnose", diagnose, "one factor at a time against the prediction (issue 28): OUT/diagnosis/")
+    g = command("diagnose", diagnose, "one factor at a time against the prediction: OUT/diagnosis/")
     g.add_argument("--factors", default=",".join(f.name for f in FACTORS),
                    help="comma-separated, of: " + ", ".join(f.name for f in FACTORS))
     add_seeds(g, "beam")
     _jobs(g)
-    q = command("calibrated", calibrated, "the nine beams with the calibration procedure's concrete (issue 28): "
+    q = command("calibrated", calibrated, "the nine beams with the calibration procedure's concrete: "
                                           "OUT/calibrated/", os.path.join(OUT, "calibrated"))
     q.add_argument("--seeds", type=int, default=6, help="specimens of the D = 50 and 100 mm beams")
     q.add_argument("--seeds-200", type=int, default=2, help="specimens of the D = 200 mm beams")
@@ -226,5 +226,6 @@ register(Study("beams", "the notched beams of Gregoire et al. (2013): calibratio
                         "comparison, diagnosis", add_arguments, cmd_beams,
                "The notched beams of Gregoire et al. (2013), one sub-command per step, in the study folder OUT "
                f"(default {OUT}): calibrate finds eps_p; predict and uniform run the beams; curves, size-effect "
-               "and compare write tables and figures from the finished cases; diagnose and calibrated run the "
-               "series of issue 28. `ldem study beams COMMAND --help` says more of each."))
+               "and compare write tables and figures from the finished cases; diagnose runs one factor at a time "
+               "against the prediction, calibrated the beams with the calibration procedure's concrete. "
+               "`ldem study beams COMMAND --help` says more of each."))

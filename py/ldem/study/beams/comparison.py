@@ -1,8 +1,8 @@
 """The blind prediction of the Grégoire et al. (2013) beams against their
-measurements (issue 28 item 1): comparison.md and comparison.png in the
-prediction's folder, from its predictions.csv and curves/*.csv (never changed)
-and the data folder's measured.csv and D50_*_load_cmod.csv (CMOD [mm], mean,
-min and max load [kN] over the specimens)."""
+measurements: comparison.md and comparison.png in the prediction's folder,
+from its predictions.csv and curves/*.csv (never changed) and the data
+folder's measured.csv and D50_*_load_cmod.csv (CMOD [mm], mean, min and max
+load [kN] over the specimens)."""
 from __future__ import annotations
 
 import os

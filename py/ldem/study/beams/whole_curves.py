@@ -1,8 +1,8 @@
-"""The Grégoire et al. (2013) beams with a measured curve, whole (issue 39
-item 2): the calibrated concrete (calibrated/material.json) run under the
-tests' probable control, a servo on a clip gauge, to past four times the
-measured CMOD at the peak; the load at 1.5, 2 and 4 times it and the work to
-the last, predicted against measured (ldem.study.curve_report).
+"""The Grégoire et al. (2013) beams with a measured curve, whole: the
+calibrated concrete (calibrated/material.json) run under the tests' probable
+control, a servo on a clip gauge, to past four times the measured CMOD at the
+peak; the load at 1.5, 2 and 4 times it and the work to the last, predicted
+against measured (ldem.study.curve_report).
 
 Why a new run set: the committed calibrated runs hold the platen, and stop
 at twice the deflection at the peak. The unnotched beams snap there, and two

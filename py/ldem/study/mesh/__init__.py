@@ -1,12 +1,12 @@
-"""The mesh study (issue 15): large cubes computed with coarse modules of side
-L, each carrying the law that the study's "tentative criterion" gives for L,
+"""The mesh study: large cubes computed with coarse modules of side L, each
+carrying the law that the study's "tentative criterion" gives for L,
 against the fine lattice (L0 = 0.02 m) of the size-effect study.
 
 The criterion (LDEM_SPEC section 6): a module of side L carries the
 stress-strain law of a specimen of side L, with the fracture-area coefficient
 corrected by the diffuse cracking measured at that size,
 c_a(L) = c_a x E[U_num/U_min](L). The law of a coarse bar is the study's
-triangle, fixed by eps_p, the G_f field and c_a; `mesh_tables.criterion_law` maps the
+triangle, fixed by eps_p, the G_f field and c_a; `tables.criterion_law` maps the
 fine cubes of side L (uniform load, six seeds, to separation) onto them:
 
     eps_p(L)   = mean peak stress(L) / E        a coarse bar starts to soften at
@@ -35,7 +35,7 @@ a cube of CALIBRATION_SIZE (never a target), against the fine lattice's,
     c_a'(L)   = c_a x fine U_num/U_min / coarse U_num/U_min
     CV(G_f)   = the material's
 
-(`mesh_tables.calibrated_law`), so that what the coarse mesh adds or loses by itself
+(`tables.calibrated_law`), so that what the coarse mesh adds or loses by itself
 (brittler bars clamped, a softer surface layer, cracking of its own) is
 measured instead of assumed to vanish."""
 from __future__ import annotations

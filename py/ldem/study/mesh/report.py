@@ -20,7 +20,7 @@ _COLOUR = {"plain": "C0", "law": "C1", "c_a": "C2", "criterion": "C3", "calibrat
 def against_module_figure(table, column: str, ylabel: str, tolerance: float, path: str, loads) -> None:
     """One panel per (load, size): the column's mean against the module size,
     a line per variant; the fine lattice's value drawn across with the
-    issue's tolerance band."""
+    verdict's tolerance band."""
     import matplotlib.pyplot as plt
 
     sizes = sorted({t["size_m"] for t in table})

@@ -1,10 +1,10 @@
-"""The refinement study (issue 15, item 2): the same cubes and material with
-modules finer than the study's, with G_f drawn per bar (a field tied to the
+"""The refinement study: the same cubes and material with modules finer
+than the study's, with G_f drawn per bar (a field tied to the
 mesh) or with a correlation length (a field tied to space); which quantities
 converge as L0 falls and which drift.
 
 Each group is compared with the same cube at the study's L0 = 0.02 m (the
-"fine" variant of mesh_tables.summarize is the coarsest here)."""
+"fine" variant of ldem.study.mesh.tables.summarize is the coarsest here)."""
 from __future__ import annotations
 
 import os

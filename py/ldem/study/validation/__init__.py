@@ -1,8 +1,8 @@
-"""Blind predictions of laboratory tests (issue 28, item 5): a specimen file,
-the concrete a laboratory reported, the calibration of docs/calibration.md at
-the file's module (ldem.study.concrete.calibrate, unchanged), six random
-specimens each stopped past their peak; the peak load (mean, CV), the curves
-and the crack pictures, written before any measurement is seen.
+"""Blind predictions of laboratory tests: a specimen file, the concrete a
+laboratory reported, the calibration of docs/calibration.md at the file's
+module (ldem.study.concrete.calibrate, unchanged), six random specimens each
+stopped past their peak; the peak load (mean, CV), the curves and the crack
+pictures, written before any measurement is seen.
 
 OUT/material.json: the calibration; OUT/cases/s{seed}/: the runs (seed 1 with
 its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's).
@@ -14,7 +14,7 @@ al. 2012), malvar_warren_s1 or _s2 (Malvar and Warren 1988, from f_c alone;
 with _weight: lying on the supports under gravity); OUT:
 ROOT/results/validation/NAME. Finished cases are not run again. --whole-curve
 runs nothing: OUT/whole_curve.md|png, the committed prediction's curve
-quantities (issue 39 item 2) at multiples of its own opening at the peak, the
+quantities (ldem.study.curve_quantities) at multiples of its own opening at the peak, the
 measured column left empty (the measurements stay out of the repository)."""
 from __future__ import annotations
 
@@ -60,7 +60,7 @@ SPECIMENS = {
     # Winkler, Hofstetter and Niederwieser (2001)
     "l_panel": Blind("examples/l_panel.toml", {"E": 25.85e9, "nu": 0.18, "f_t": 2.7e6, "G_F": 90.0},
                      "mean_strain", "load-point displacement [mm]", 500.0,  # gauge 0.5 m, to mm
-                     beyond=4.0),  # to 4 times its displacement at the peak (issue 41, item 6)
+                     beyond=4.0),  # to 4 times its displacement at the peak
     # García-Álvarez, Gettu and Carol (2012)
     "eccentric_notch_beam": Blind("examples/eccentric_notch_beam.toml",
                                   {"E": 33.8e9, "nu": 0.2, "f_t": 3.5e6, "G_F": 125.0, "rho": 2346.0},
@@ -225,8 +225,8 @@ def _peak_note(summary: dict, row: dict) -> List[str]:
     if abs(curves / run - 1) <= 0.005:
         return []
     return [f"The peak here is the mean of each curve's largest recorded load; the prediction's (`predictions.csv`, "
-            f"each run's own peak) is {run:.3f} kN, {run / curves - 1:+.1%}: a run recorded before the load cell "
-            "(issue 41) read its peak at a single step, the top of the ringing.", ""]
+            f"each run's own peak) is {run:.3f} kN, {run / curves - 1:+.1%}: a run recorded without the load cell "
+            "read its peak at a single step, the top of the ringing.", ""]
 
 
 def add_arguments(v) -> None:
