@@ -170,11 +170,22 @@ def _registered_studies(study=STUDY):
     return found
 
 
+def _study_order(study=STUDY):
+    """The study folders in the order study/__init__.py imports them (that of `ldem study`'s list)."""
+    order = []
+    for node in ast.parse(open(os.path.join(study, "__init__.py")).read()).body:
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            names = [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
+            order += [n for n in names if os.path.isdir(os.path.join(study, n)) and n not in order]
+    return order
+
+
 def _study_shape(study=STUDY):
     """What breaks the study package's shape: a registered study that is not
     registered by the __init__ of its own folder (its name, a hyphen made an
-    underscore), a folder that is no registered study, and a shared module
-    (a file at study/'s top) that imports a study's folder."""
+    underscore), a folder that is no registered study, a shared module (a
+    file at study/'s top) that imports a study's folder, and a study that
+    imports one listed after it (a study may build on an earlier one)."""
     prefix = "ldem.study."
     registered = _registered_studies(study)
     folders = {f for f in os.listdir(study) if os.path.isfile(os.path.join(study, f, "__init__.py"))}
@@ -183,12 +194,17 @@ def _study_shape(study=STUDY):
     wrong += [f"study/{f}/ is a folder of no registered study" for f in sorted(folders)
               if f not in {n.replace("-", "_") for n in registered}]
     _, graph = _graph(os.path.dirname(study))
+    order = _study_order(study)
     for mod, deps in sorted(graph.items()):
         parts = mod.split(".")
-        if parts[:2] != ["ldem", "study"] or len(parts) != 3 or parts[2] in folders:
-            continue  # not a shared module (ldem.study itself, the facade, imports every study)
-        wrong += [f"{mod} (shared) imports the study {d}" for d in sorted(deps)
-                  if d.startswith(prefix) and d.split(".")[2] in folders]
+        if parts[:2] != ["ldem", "study"] or len(parts) < 3:
+            continue  # ldem.study itself, the facade, imports every study
+        studies = sorted(d for d in deps if d.startswith(prefix) and d.split(".")[2] in folders)
+        if parts[2] not in folders:
+            wrong += [f"{mod} (shared) imports the study {d}" for d in studies]
+        elif parts[2] in order:
+            wrong += [f"{mod} imports {d}, a study listed after it" for d in studies
+                      if d.split(".")[2] in order and order.index(d.split(".")[2]) > order.index(parts[2])]
     return wrong
 
 
@@ -196,22 +212,26 @@ def test_each_registered_study_is_a_folder_of_its_name_and_the_shared_modules_im
     """`ldem study NAME` is study/NAME/ (size-effect: size_effect/): its
     command, cases, tables and report in one folder; what studies share
     (cases, executors, tables, options, ...) sits at study/'s top level and
-    imports no study."""
+    imports no study; a study builds only on those listed before it."""
     assert {"size-effect", "beams", "seed-settings"} <= set(_registered_studies()), _registered_studies()
+    assert _study_order()[:2] == ["size_effect", "damping"] and _study_order()[-1] == "seed_settings", _study_order()
     wrong = _study_shape()
     assert not wrong, "the study package's shape:\n" + "\n".join(wrong)
 
 
-def test_the_study_check_sees_a_flat_study_a_stray_folder_and_a_shared_module_above_a_study(tmp_path):
+def test_the_study_check_sees_a_flat_study_a_stray_folder_a_shared_module_above_a_study_and_a_later_study(
+        tmp_path):
     study = tmp_path / "ldem" / "study"
-    for folder in ("fine", "stray", "flat_one"):
+    for folder in ("fine", "stray", "flat_one", "later"):
         (study / folder).mkdir(parents=True)
     (tmp_path / "ldem" / "__init__.py").write_text("")
-    (study / "__init__.py").write_text("from . import fine, flat\n")
+    (study / "__init__.py").write_text("from . import fine, flat\nfrom .later import x\n")
     (study / "registry.py").write_text("def register(s):\n    return s\n")
     (study / "cases.py").write_text("from .fine import helper\n")
-    (study / "fine" / "__init__.py").write_text("from ..registry import Study, register\n"
+    (study / "fine" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..later import y\n"
                                                 "register(Study('fine', 'line', None, None))\n")
+    (study / "later" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..fine import z\n"
+                                                 "register(Study('later', 'line', None, None))\n")
     (study / "stray" / "__init__.py").write_text("")
     (study / "flat_one" / "__init__.py").write_text("")
     (study / "flat.py").write_text("from .registry import Study, register\n"
@@ -219,7 +239,8 @@ def test_the_study_check_sees_a_flat_study_a_stray_folder_and_a_shared_module_ab
     assert _study_shape(str(study)) == [
         "study 'flat-one' is registered in ldem.study.flat, not in ldem.study.flat_one (its folder's __init__.py)",
         "study/stray/ is a folder of no registered study",
-        "ldem.study.cases (shared) imports the study ldem.study.fine"]
+        "ldem.study.cases (shared) imports the study ldem.study.fine",
+        "ldem.study.fine imports ldem.study.later, a study listed after it"]
 
 # What a script may not do: run cases side by side or keep case folders (ldem.study does).
 CASE_RUNNER_IMPORTS = {"multiprocessing", "concurrent.futures", "distributed", "dask"}
