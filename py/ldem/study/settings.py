@@ -14,7 +14,7 @@ from ..cube import CubeTest
 # x its strain at the peak, so by default it stops there (stop_at past_peak:
 # dynamics/PastPeakStop.hpp). Its load loss (1 %) comes much later, and its
 # U_final (dynamics/ConvergedStop.hpp) later still, as the columns beside the
-# hinge break: both are options, at the cost docs/studies.md gives
+# hinge break: both are options, at their cost in steps
 # (results/archive/size-effect/study_hour/README.md).
 STUDY_STOP = {"uniform": "separation", "triangular": "past_peak"}
 TRIANGULAR_STOPS = ("past_peak", "load_loss", "converged")
@@ -27,9 +27,9 @@ TRIANGULAR_CONVERGED_COST = ("about 55 min a 0.96 m case on 2 cores, 5.5 h for i
 # faster. From 0.72 m on the study damps each node's velocity less its own mean
 # there (tail_damping relative, dynamics/MassDamping.hpp), so that the speed-up
 # drags nothing: U_num is then the absolute damping's in fewer steps. Below 0.72
-# m the tail breaks much of U_num, where the relative damping is the farther
-# from a run with no speed-up, so the absolute damping stays there (its drive
-# bounds its drag) (results/dynamics/relative_damping.md).
+# m the tail breaks much of U_num, and the relative damping is the farther from
+# a run with no speed-up (results/dynamics/relative_damping.md): the absolute
+# damping stays there, and its drive bounds its drag.
 # --set tail_damping=... sets it for every size.
 RELATIVE_TAIL_FROM_M = 0.72
 
