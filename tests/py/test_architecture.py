@@ -180,12 +180,27 @@ def _study_order(study=STUDY):
     return order
 
 
+def _defined(path):
+    """The names a module's own body binds: its functions, classes, assignments and imports' names."""
+    names = set()
+    for node in ast.parse(open(path).read()).body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, ast.Assign):
+            names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.Import) or isinstance(node, ast.ImportFrom) and node.module:
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names}  # (`from . import x` is x itself)
+    return names
+
+
 def _study_shape(study=STUDY):
     """What breaks the study package's shape: a registered study that is not
     registered by the __init__ of its own folder (its name, a hyphen made an
     underscore), a folder that is no registered study, a shared module (a
-    file at study/'s top) that imports a study's folder, and a study that
-    imports one listed after it (a study may build on an earlier one)."""
+    file at study/'s top) that imports a study's folder, a study that
+    imports one listed after it (a study may build on an earlier one), and a
+    name of a study's __init__ that hides a module of its folder (the
+    package's attribute would be the name, not the module)."""
     prefix = "ldem.study."
     registered = _registered_studies(study)
     folders = {f for f in os.listdir(study) if os.path.isfile(os.path.join(study, f, "__init__.py"))}
@@ -194,6 +209,10 @@ def _study_shape(study=STUDY):
     wrong += [f"study/{f}/ is a folder of no registered study" for f in sorted(folders)
               if f not in {n.replace("-", "_") for n in registered}]
     _, graph = _graph(os.path.dirname(study))
+    for f in sorted(folders):
+        modules = {m[:-3] for m in os.listdir(os.path.join(study, f)) if m.endswith(".py")}
+        wrong += [f"{prefix}{f}'s {n} hides its module {n}.py" for n in sorted(_defined(os.path.join(study, f,
+                                                                                                 "__init__.py")) & modules)]
     order = _study_order(study)
     for mod, deps in sorted(graph.items()):
         parts = mod.split(".")
@@ -219,8 +238,7 @@ def test_each_registered_study_is_a_folder_of_its_name_and_the_shared_modules_im
     assert not wrong, "the study package's shape:\n" + "\n".join(wrong)
 
 
-def test_the_study_check_sees_a_flat_study_a_stray_folder_a_shared_module_above_a_study_and_a_later_study(
-        tmp_path):
+def test_the_study_check_sees_a_flat_study_a_stray_folder_a_hidden_module_and_imports_upward(tmp_path):
     study = tmp_path / "ldem" / "study"
     for folder in ("fine", "stray", "flat_one", "later"):
         (study / folder).mkdir(parents=True)
@@ -231,7 +249,9 @@ def test_the_study_check_sees_a_flat_study_a_stray_folder_a_shared_module_above_
     (study / "fine" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..later import y\n"
                                                 "register(Study('fine', 'line', None, None))\n")
     (study / "later" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..fine import z\n"
-                                                 "register(Study('later', 'line', None, None))\n")
+                                                 "register(Study('later', 'line', None, None))\n"
+                                                 "from .tables import write\ndef tables(args):\n    pass\n")
+    (study / "later" / "tables.py").write_text("def write():\n    pass\n")
     (study / "stray" / "__init__.py").write_text("")
     (study / "flat_one" / "__init__.py").write_text("")
     (study / "flat.py").write_text("from .registry import Study, register\n"
@@ -239,6 +259,7 @@ def test_the_study_check_sees_a_flat_study_a_stray_folder_a_shared_module_above_
     assert _study_shape(str(study)) == [
         "study 'flat-one' is registered in ldem.study.flat, not in ldem.study.flat_one (its folder's __init__.py)",
         "study/stray/ is a folder of no registered study",
+        "ldem.study.later's tables hides its module tables.py",
         "ldem.study.cases (shared) imports the study ldem.study.fine",
         "ldem.study.fine imports ldem.study.later, a study listed after it"]
 

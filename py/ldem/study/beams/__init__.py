@@ -136,7 +136,7 @@ def whole(args) -> None:
                            seed_count(args), args.jobs))
 
 
-def transfer(args) -> None:
+def calibrate_on_one(args) -> None:
     """Calibrate on each beam of --on in turn, predict the others (transfer/PROTOCOL.md)."""
     data = args.data or default_data(args.out)
     names = {beam_name(*b): b for b in measured_beams(data)}
@@ -205,8 +205,8 @@ def add_arguments(b) -> None:
     add_seeds(w, "beam")
     _jobs(w)
     _data(w)
-    t = command("transfer", transfer, "calibrate on one measured beam, predict the other two, by "
-                                      "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
+    t = command("transfer", calibrate_on_one, "calibrate on one measured beam, predict the other two, by "
+                                              "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
     t.add_argument("--on", default="D50_n0,D50_n0.5,D100_n0.2", help="the beams to calibrate on, in turn")
     t.add_argument("--start", default="", metavar="MATERIAL.json", help="the fit's start (default: "
                    "../calibrated/material.json beside OUT, the calibrated concrete)")
