@@ -79,9 +79,8 @@ def specimen_curves_figure(groups, load, sizes, path):
 
 
 def mean_curves_figure(groups, load, sizes, path):
-    """The mean curve of each size; beside it, the same near the peaks where the runs go on far past them.
-    Where they do, the whole run is drawn on a log strain axis from a thousandth of the zoom's reach:
-    a linear grid to the separation (1e3 x the peak's strain) would step over the peaks."""
+    """The mean curve of each size; beside it, the same near the peaks where the runs go on far past them,
+    and then the whole run on a log strain axis (a linear grid to the separation steps over the peaks)."""
     reach = _reach([c for size in sizes for c in groups[(load, size)]])
     fig, axes = plt.subplots(1, 1 + (reach is not None), figsize=(6.4 * (1 + (reach is not None)), 4.4),
                              squeeze=False, layout="constrained")
@@ -93,8 +92,7 @@ def mean_curves_figure(groups, load, sizes, path):
             ax.plot(*mean_curve(curves, "stress_MPa", after_end=0.0, upto=upto, log_from=start), lw=1.6,
                     label=f"{size:g} m: mean of {len(curves)} specimen" + "s" * (len(curves) > 1))
         _strain_axis(ax, "mean normal stress [MPa]")
-        if start is not None:
-            ax.set_xscale("log")
+        ax.set_xscale("linear" if start is None else "log")
     axes[0, 0].set_title(title)
     axes[0, 0].legend(fontsize=8)
     if reach is not None:

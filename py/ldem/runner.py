@@ -105,9 +105,9 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
 
 def _set_up(test: CubeTest, out: Optional[str], simulation=None):
     """The output folder, then test.simulation() (unless given); a signal
-    meanwhile leaves a summary.json that says so (from the moment the folder
-    exists: a signal just after it was made, before the simulation's set-up
-    began, left none; test_signals.py caught it once in a loaded CI run)."""
+    meanwhile leaves a summary.json that says so, from the moment the folder
+    exists (a signal between the folder and the simulation's set-up would
+    otherwise leave none)."""
     try:
         if out is not None:
             io.prepare_dir(out)

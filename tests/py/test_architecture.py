@@ -152,6 +152,117 @@ def test_no_long_module_without_its_reason():
         ", ".join(long)
 
 
+
+# -- ldem.study: one folder per registered study, the shared modules beside them -----------
+STUDY = os.path.join(PACKAGE, "study")
+
+
+def _registered_studies(study=STUDY):
+    """{registered name: the module that registers it}, read from every register(Study("name", ...)) call."""
+    found = {}
+    for name, path in _modules(os.path.dirname(study)):
+        if not name.startswith("ldem.study"):
+            continue
+        for node in ast.walk(ast.parse(open(path).read())):
+            if isinstance(node, ast.Call) and getattr(node.func, "id", "") == "register" and node.args \
+                    and isinstance(node.args[0], ast.Call) and getattr(node.args[0].func, "id", "") == "Study":
+                found[ast.literal_eval(node.args[0].args[0])] = name
+    return found
+
+
+def _study_order(study=STUDY):
+    """The study folders in the order study/__init__.py imports them (that of `ldem study`'s list)."""
+    order = []
+    for node in ast.parse(open(os.path.join(study, "__init__.py")).read()).body:
+        if isinstance(node, ast.ImportFrom) and node.level == 1:
+            names = [node.module.split(".")[0]] if node.module else [a.name for a in node.names]
+            order += [n for n in names if os.path.isdir(os.path.join(study, n)) and n not in order]
+    return order
+
+
+def _defined(path):
+    """The names a module's own body binds: its functions, classes, assignments and imports' names."""
+    names = set()
+    for node in ast.parse(open(path).read()).body:
+        if isinstance(node, (ast.FunctionDef, ast.ClassDef)):
+            names.add(node.name)
+        elif isinstance(node, ast.Assign):
+            names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.Import) or isinstance(node, ast.ImportFrom) and node.module:
+            names |= {(a.asname or a.name).split(".")[0] for a in node.names}  # (`from . import x` is x itself)
+    return names
+
+
+def _study_shape(study=STUDY):
+    """What breaks the study package's shape: a registered study that is not
+    registered by the __init__ of its own folder (its name, a hyphen made an
+    underscore), a folder that is no registered study, a shared module (a
+    file at study/'s top) that imports a study's folder, a study that
+    imports one listed after it (a study may build on an earlier one), and a
+    name of a study's __init__ that hides a module of its folder (the
+    package's attribute would be the name, not the module)."""
+    prefix = "ldem.study."
+    registered = _registered_studies(study)
+    folders = {f for f in os.listdir(study) if os.path.isfile(os.path.join(study, f, "__init__.py"))}
+    wrong = [f"study {n!r} is registered in {m}, not in {prefix}{n.replace('-', '_')} (its folder's __init__.py)"
+             for n, m in sorted(registered.items()) if m != prefix + n.replace("-", "_")]
+    wrong += [f"study/{f}/ is a folder of no registered study" for f in sorted(folders)
+              if f not in {n.replace("-", "_") for n in registered}]
+    _, graph = _graph(os.path.dirname(study))
+    for f in sorted(folders):
+        modules = {m[:-3] for m in os.listdir(os.path.join(study, f)) if m.endswith(".py")}
+        wrong += [f"{prefix}{f}'s {n} hides its module {n}.py" for n in sorted(_defined(os.path.join(study, f,
+                                                                                                 "__init__.py")) & modules)]
+    order = _study_order(study)
+    for mod, deps in sorted(graph.items()):
+        parts = mod.split(".")
+        if parts[:2] != ["ldem", "study"] or len(parts) < 3:
+            continue  # ldem.study itself, the facade, imports every study
+        studies = sorted(d for d in deps if d.startswith(prefix) and d.split(".")[2] in folders)
+        if parts[2] not in folders:
+            wrong += [f"{mod} (shared) imports the study {d}" for d in studies]
+        elif parts[2] in order:
+            wrong += [f"{mod} imports {d}, a study listed after it" for d in studies
+                      if d.split(".")[2] in order and order.index(d.split(".")[2]) > order.index(parts[2])]
+    return wrong
+
+
+def test_each_registered_study_is_a_folder_of_its_name_and_the_shared_modules_import_none():
+    """`ldem study NAME` is study/NAME/ (size-effect: size_effect/): its
+    command, cases, tables and report in one folder; what studies share
+    (cases, executors, tables, options, ...) sits at study/'s top level and
+    imports no study; a study builds only on those listed before it."""
+    assert {"size-effect", "beams", "seed-settings"} <= set(_registered_studies()), _registered_studies()
+    assert _study_order()[:2] == ["size_effect", "damping"] and _study_order()[-1] == "seed_settings", _study_order()
+    wrong = _study_shape()
+    assert not wrong, "the study package's shape:\n" + "\n".join(wrong)
+
+
+def test_the_study_check_sees_a_flat_study_a_stray_folder_a_hidden_module_and_imports_upward(tmp_path):
+    study = tmp_path / "ldem" / "study"
+    for folder in ("fine", "stray", "flat_one", "later"):
+        (study / folder).mkdir(parents=True)
+    (tmp_path / "ldem" / "__init__.py").write_text("")
+    (study / "__init__.py").write_text("from . import fine, flat\nfrom .later import x\n")
+    (study / "registry.py").write_text("def register(s):\n    return s\n")
+    (study / "cases.py").write_text("from .fine import helper\n")
+    (study / "fine" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..later import y\n"
+                                                "register(Study('fine', 'line', None, None))\n")
+    (study / "later" / "__init__.py").write_text("from ..registry import Study, register\nfrom ..fine import z\n"
+                                                 "register(Study('later', 'line', None, None))\n"
+                                                 "from .tables import write\ndef tables(args):\n    pass\n")
+    (study / "later" / "tables.py").write_text("def write():\n    pass\n")
+    (study / "stray" / "__init__.py").write_text("")
+    (study / "flat_one" / "__init__.py").write_text("")
+    (study / "flat.py").write_text("from .registry import Study, register\n"
+                                   "register(Study('flat-one', 'line', None, None))\n")
+    assert _study_shape(str(study)) == [
+        "study 'flat-one' is registered in ldem.study.flat, not in ldem.study.flat_one (its folder's __init__.py)",
+        "study/stray/ is a folder of no registered study",
+        "ldem.study.later's tables hides its module tables.py",
+        "ldem.study.cases (shared) imports the study ldem.study.fine",
+        "ldem.study.fine imports ldem.study.later, a study listed after it"]
+
 # What a script may not do: run cases side by side or keep case folders (ldem.study does).
 CASE_RUNNER_IMPORTS = {"multiprocessing", "concurrent.futures", "distributed", "dask"}
 CASE_RUNNER_NAMES = {"run_case", "run_cases", "run_all", "case_dir", "finished", "is_finished", "_done"}

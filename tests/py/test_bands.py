@@ -1,5 +1,5 @@
 """A prediction's input band and the module a specimen needs (ldem.study.bands,
-ldem.study.validation_band, ldem.module_rule, ldem.study.beam_convergence):
+ldem.study.validation.band, ldem.module_rule, ldem.study.beams.convergence):
 the Latin hypercube's marginals are the stated distributions and the same
 seed gives the same design; the band of a peak linear in f_t is the normal's;
 the inputs and their sources; the rule's warning for a coarse notched beam and
@@ -17,7 +17,9 @@ import ldem
 from conftest import ROOT, picture
 from ldem import module_rule
 from ldem.run_command import warn_module
-from ldem.study import bands, beam_convergence, validation, validation_band
+from ldem.study import bands, validation
+from ldem.study.beams import convergence as beam_convergence
+from ldem.study.validation import band as validation_band
 from ldem.study.mc2010 import mc2010_from_compressive_strength
 
 E = bands.Scatter("E", 30e9, 0.05, "a test's")

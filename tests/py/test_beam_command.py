@@ -11,7 +11,7 @@ import pytest
 
 from conftest import ROOT, picture
 from ldem import io
-from ldem.study import beams
+from ldem.study.beams import cases as beams
 
 PREDICTION = os.path.join(ROOT, "results", "beams", "gregoire2013")
 COMMANDS = ["calibrate", "predict", "uniform", "curves", "compare", "size-effect", "diagnose", "calibrated",

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from conftest import ROOT, picture
-from ldem.study import beam_comparison
+from ldem.study.beams import comparison as beam_comparison
 
 DATA = os.path.join(ROOT, "..", "shared", "data", "gregoire2013")
 PREDICTION = os.path.join(ROOT, "results", "beams", "gregoire2013")

@@ -4,7 +4,7 @@ tables recover Bažant's law from points that follow it."""
 import numpy as np
 import pytest
 
-from ldem.study import beam_tables, beams
+from ldem.study.beams import cases as beams, tables as beam_tables
 
 
 def test_bazant_s_law_is_recovered_from_points_on_it():

@@ -1,5 +1,5 @@
 """The calibration from a laboratory's properties (docs/calibration.md,
-ldem.study.concrete) and the diagnosis's factors (ldem.study.beam_diagnosis):
+ldem.study.concrete) and the diagnosis's factors (ldem.study.beams.diagnosis):
 the virtual prism's gauges read a known material, the procedure meets its
 targets on a coarse prism and its output for Grégoire et al.'s concrete is
 pinned, each factor changes exactly what it names."""
@@ -9,7 +9,8 @@ import math
 import numpy as np
 import pytest
 
-from ldem.study import beam_diagnosis, beams, concrete, mc2010
+from ldem.study import concrete, mc2010
+from ldem.study.beams import cases as beams, diagnosis as beam_diagnosis
 
 
 @pytest.mark.direct

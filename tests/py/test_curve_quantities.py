@@ -1,12 +1,13 @@
 """The whole-curve quantities of issue 39 item 2 (ldem.study.curve_quantities,
 curve_report) on synthetic curves with known answers, and the clip gauge of
-the Grégoire beams' whole-curve runs (ldem.study.whole_curves)."""
+the Grégoire beams' whole-curve runs (ldem.study.beams.whole_curves)."""
 import math
 
 import numpy as np
 import pytest
 
-from ldem.study import beams, curve_quantities as cq, curve_report, whole_curves
+from ldem.study import curve_quantities as cq, curve_report
+from ldem.study.beams import cases as beams, whole_curves
 
 # A bilinear curve: P = 10 x up to the peak (x_p = 0.1 mm, 1 kN), then falling
 # linearly to zero at 0.5 mm, recorded at points that miss every multiple of x_p.

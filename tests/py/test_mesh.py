@@ -8,7 +8,8 @@ import pytest
 from conftest import run_cli
 
 import ldem
-from ldem.study import mesh, mesh_tables
+from ldem.study import mesh
+from ldem.study.mesh import tables as mesh_tables
 
 
 def _modulus(size, L0):

@@ -251,11 +251,11 @@ def test_an_interrupted_study_names_the_folder_that_keeps_its_cases(tmp_path, mo
     whose --out is its result file and whose prisms run again, keeps nothing."""
     from ldem import cli
     from ldem.signals import Terminated
-    from ldem.study import concrete, fracture_energy, validation
+    from ldem.study import calibration, fracture_energy, validation
 
     def stop(*args, **kw):
         raise Terminated()
-    for module, name in ((validation, "predict"), (fracture_energy, "measure"), (concrete, "calibrate")):
+    for module, name in ((validation, "predict"), (fracture_energy, "measure"), (calibration, "calibrate")):
         monkeypatch.setattr(module, name, stop)
     (tmp_path / "m.json").write_text(json.dumps({"material": {}, "L0": 0.01}))
     root = str(tmp_path)

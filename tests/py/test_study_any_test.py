@@ -10,7 +10,8 @@ import pytest
 import ldem
 from conftest import ROOT
 from ldem import study
-from ldem.study import ablation, beams
+from ldem.study import ablation
+from ldem.study.beams import cases as beams
 
 
 def tiny_beam(seed: int, notch: float = 0.5) -> ldem.SpecimenTest:

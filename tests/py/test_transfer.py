@@ -1,4 +1,4 @@
-"""Calibrate on one beam, predict the rest (issue 39 item 3; ldem.study.transfer
+"""Calibrate on one beam, predict the rest (issue 39 item 3; ldem.study.beams.transfer
 and results/beams/gregoire2013/transfer/PROTOCOL.md): the fit lands within its
 tolerance on a tiny beam whose "measurement" is the model's own at other
 parameters, and the beams it predicts never reach it."""
@@ -9,7 +9,8 @@ import os
 import numpy as np
 import pytest
 
-from ldem.study import curve_quantities as cq, transfer, whole_curves
+from ldem.study import curve_quantities as cq
+from ldem.study.beams import transfer, whole_curves
 
 START = {"E": 37.5e9, "nu": 0.21, "rho": 2400.0, "Gf_mean": 143.0, "Gf_cv": 1.0, "c_a": 0.1385,
          "eps_p": 1.14e-4, "law": "bilinear", "Gf_ratio": 0.4, "kink_stress": 0.2}

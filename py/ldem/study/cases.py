@@ -3,7 +3,7 @@ running one case into its folder, and reading its files back.
 
 A case is any test object with parameters() and run() (and simulation(),
 final_strain, energy_tolerance, describe()): ldem.CubeTest, ldem.SpecimenTest,
-or a study's own (ldem.study.beams.Beam). It may also say
+or a study's own (ldem.study.beams.cases.Beam). It may also say
     case_name()    its folder's name (default: the cube's load_size_seed...,
                    or for any other test its seed and a hash of its parameters)
     cases_folder   the folder of the case folders (default "cases")

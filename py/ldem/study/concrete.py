@@ -1,6 +1,6 @@
-"""The lattice's own concrete, measured by virtual standard tests (issue 28):
-the direct tension prism 50 x 50 x 100 mm of the beams' calibration, pulled
-to separation, gives what a laboratory would report of the material it stands
+"""The lattice's own concrete, measured by virtual standard tests: the
+direct tension prism 50 x 50 x 100 mm of the beams' calibration, pulled to
+separation, gives what a laboratory would report of the material it stands
 for:
 - E and nu from two gauges at mid-height (axial over 50 mm, lateral across
   the 50 mm width), fitted between 20 % and 60 % of the peak on the rising
@@ -16,17 +16,13 @@ A material is a dict of the parameter table's material names (E, nu,
 Gf_mean, Gf_cv, law, ...)."""
 from __future__ import annotations
 
-import json
 import statistics
 from typing import Callable, Dict, List, Optional, Sequence
 
 import numpy as np
 
-from .. import io
 from ..specimen import SpecimenTest
-from .mc2010 import lab_values, mc2010_fracture_energy
-from .options import parameter_option, seed_count
-from .registry import Study, register
+from .mc2010 import mc2010_fracture_energy
 
 PRISM = (0.05, 0.05, 0.10)  # width, thickness, height [m]
 PRISM_RATE = 0.05  # strain rate [1/s]: the beams' calibration's
@@ -104,8 +100,8 @@ def measure(material: dict, L0: float, seeds: Sequence[int] = (1, 2, 3), stop_at
     return out
 
 
-# The calibration from standard properties (issue 28, item 4; docs/calibration.md
-# has the reasoning and the sources). Fixed before any new blind prediction.
+# The calibration from standard properties (docs/calibration.md has the
+# reasoning and the sources). Fixed before any new blind prediction.
 GF_INITIAL_SHARE = 0.4  # G_f / G_F: Bažant & Becq-Giraudon (2002), mean G_F / G_f = 2.5
 KINK_STRESS = 0.2  # sigma_k / f_t of the bilinear law: fib MC2010 eq. 5.1-10
 GF_CV, C_A = 1.0, 0.1385  # the study's random field and fracture area (LDEM_SPEC section 6)
@@ -168,40 +164,3 @@ def calibrate(E: float, nu: float, f_t: float, f_c: Optional[float] = None, G_F:
         material = dict(material, E=material["E"] * kE, eps_p=next_eps_p(tried, f_t))
     return {"material": material, "target": target, "measured": {k: m[k] for k in ("E", "nu", "f_t")},
             "L0": L0, "seeds": list(seeds)}
-
-
-def add_arguments(c) -> None:
-    lab = "; the concrete's, as the laboratory reports it (default: fib MC2010's from --fc)"
-    parameter_option(c, "E", "--E", lab, default=None)
-    parameter_option(c, "nu", "--nu", lab, default=None)
-    c.add_argument("--ft", type=float, default=None, help="direct tensile strength [Pa] (default: fib MC2010's "
-                                                          "f_ctm from --fc)")
-    c.add_argument("--fc", type=float, default=None, help="mean compressive strength [Pa]: for what else is not "
-                                                          "given (mc2010_from_compressive_strength)")
-    c.add_argument("--GF", type=float, default=None, help="total fracture energy [N/m] (default: fib MC2010's)")
-    parameter_option(c, "rho", "--rho", "; the concrete's")
-    parameter_option(c, "L0", "--L0", "; the module of the structure to model", default=None, required=True)
-    c.add_argument("--seeds", type=int, default=3, help="prisms per round (seeds 1..N)")
-    # dest "result": a file, not a study folder of cases (an interrupted calibration keeps nothing)
-    c.add_argument("--out", dest="result", default="", metavar="FILE", help="write the result here (JSON)")
-
-
-def cmd_calibration(args) -> int:
-    """Prints each prism and round, then the result (JSON), also written to --out.
-    What is not given comes from fib MC2010 and --fc (the result's "sources")."""
-    given, sources = lab_values(args.E, args.nu, args.ft, args.fc, args.GF)
-    result = calibrate(given["E"], given["nu"], given["f_t"], args.fc, args.GF, args.rho, args.L0,
-                       range(1, seed_count(args) + 1), lambda s: print(s, flush=True))
-    result["sources"] = sources
-    text = json.dumps(result, indent=1)
-    print(text)
-    if args.result:
-        io.write_text(args.result, text + "\n")
-    return 0
-
-
-register(Study("calibration", "the lattice material of a concrete from what a laboratory reports (E, nu, f_t, "
-                              "f_c or G_F; or f_c alone, with fib MC2010), by the virtual prism", add_arguments, cmd_calibration,
-               "Runs the virtual direct tension prism (seeds 1..N, to its load loss) until its E and f_t are "
-               "within 1 % of the targets (docs/calibration.md); use the parameters under [material] of a "
-               "specimen file with the same L0."))

@@ -1,7 +1,7 @@
-"""What an engineer reads off a load-opening curve beyond its peak (issue 39
-item 2): the load at given multiples of the opening at the peak, and the work
-under the curve to the last of them. Pure functions of (x, load) arrays: x an
-opening or a deflection [mm], the load [kN], so a work is in kN mm = J.
+"""What an engineer reads off a load-opening curve beyond its peak: the load
+at given multiples of the opening at the peak, and the work under the curve to
+the last of them. Pure functions of (x, load) arrays: x an opening or a
+deflection [mm], the load [kN], so a work is in kN mm = J.
 
 Measured curves are noisy at their start (a CMOD that steps back) and driven
 ones may start below zero (a beam zeroed under its weight): every quantity
@@ -13,7 +13,7 @@ from typing import Dict, Sequence, Tuple
 import numpy as np
 
 Curve = Tuple[np.ndarray, np.ndarray]  # (x [mm], load [kN])
-MULTIPLES = (1.5, 2.0, 4.0)  # of the opening at the peak (issue 39 item 2)
+MULTIPLES = (1.5, 2.0, 4.0)  # of the opening at the peak
 
 
 def rising(curve: Curve) -> Curve:

@@ -1,7 +1,7 @@
-"""The whole-curve table and figure of a prediction (issue 39 item 2): per
-specimen, the predicted seeds' curve quantities (ldem.study.curve_quantities)
-beside the measured mean curve's, or with the measured column left empty (a
-blind prediction, whose measurements stay out of the repository)."""
+"""The whole-curve table and figure of a prediction: per specimen, the
+predicted seeds' curve quantities (ldem.study.curve_quantities) beside the
+measured mean curve's, or with the measured column left empty (a blind
+prediction, whose measurements stay out of the repository)."""
 from __future__ import annotations
 
 import math

@@ -1,5 +1,5 @@
 """Run an ldem lattice in YADE, with YADE's own integrator and a native YADE
-law, as an independent check of the ldem engine (issue 5).
+law, as an independent check of the ldem engine.
 
 Use inside YADE (``yade-double -n -x script.py``)::
 

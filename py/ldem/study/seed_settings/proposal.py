@@ -17,7 +17,7 @@ from ... import io
 from ...cube import CubeTest
 from ..executors import run_cases
 from ..mesh import UNIFORM_FINAL_STRAIN, law_tests
-from ..mesh_tables import criterion_law, variant_law
+from ..mesh.tables import criterion_law, variant_law
 from ..settings import tail_settings
 from ..tables import case_row, mean_cv
 from .fit import fit_variant

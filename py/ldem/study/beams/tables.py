@@ -1,4 +1,4 @@
-"""The beams' tables (ldem.study.beams): their size effect and their curves.
+"""The beams' tables (ldem.study.beams.cases): their size effect and their curves.
 
 Size effect: nominal strength sigma_N = 1.5 F S / (b D^2) (S = 2.5 D the
 span, b the thickness) of every case; for each notch depth, Bažant's law
@@ -17,8 +17,8 @@ from typing import List
 
 import numpy as np
 
-from .. import io
-from .beams import B, DEPTHS, FT, NOTCHES, beam_case
+from ... import io
+from .cases import B, DEPTHS, FT, NOTCHES, beam_case
 
 SIZE_EFFECT_COLUMNS = ["Gf_cv", "D_m", "notch", "seed", "F_N", "sigma_N_MPa"]
 

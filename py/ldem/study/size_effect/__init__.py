@@ -8,16 +8,16 @@ import os
 import time
 from typing import Optional, Sequence
 
-from .. import io
-from ..markdown import num_cell
-from ..cube import CubeTest
-from .cases import load_case, load_curves, read_discussion
-from .settings import TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, size_effect_tests
-from .executors import run_cases
-from .options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
-                      parse_loads, seed_count, values_option)
-from .registry import Study, register
-from .tables import CASE_COLUMNS, SUMMARY_COLUMNS, aggregate, case_row, fractal_fits
+from ... import io
+from ...markdown import num_cell
+from ...cube import CubeTest
+from ..cases import load_case, load_curves, read_discussion
+from ..settings import TRIANGULAR_CONVERGED_COST, TRIANGULAR_STOPS, size_effect_tests
+from ..executors import run_cases
+from ..options import (add_common, add_seeds, check_tests, common_settings, parse_floats,
+                       parse_loads, seed_count, values_option)
+from ..registry import Study, register
+from ..tables import CASE_COLUMNS, SUMMARY_COLUMNS, aggregate, case_row, fractal_fits
 
 STUDY_SIZES = (0.12, 0.24, 0.48, 0.72, 0.96)
 
@@ -41,7 +41,7 @@ def run_size_effect(tests: Sequence[CubeTest], out: str, jobs: int = 1, schedule
 def write_size_effect_report(out: str, tests: Sequence[CubeTest], rows, table, fits, fmt: str = "png") -> None:
     """report.md with the figures, the damping table if the damping study ran
     into the same folder, and discussion.md (hand-written) if there is one."""
-    from .. import report
+    from ... import report
 
     damping_csv = os.path.join(out, "damping.csv")
     report.size_effect_report(out, [load_case(out, t) for t in tests], rows, table, fits,

@@ -1,12 +1,12 @@
-"""The mesh study (issue 15): large cubes computed with coarse modules of side
-L, each carrying the law that the study's "tentative criterion" gives for L,
+"""The mesh study: large cubes computed with coarse modules of side L, each
+carrying the law that the study's "tentative criterion" gives for L,
 against the fine lattice (L0 = 0.02 m) of the size-effect study.
 
 The criterion (LDEM_SPEC section 6): a module of side L carries the
 stress-strain law of a specimen of side L, with the fracture-area coefficient
 corrected by the diffuse cracking measured at that size,
 c_a(L) = c_a x E[U_num/U_min](L). The law of a coarse bar is the study's
-triangle, fixed by eps_p, the G_f field and c_a; `mesh_tables.criterion_law` maps the
+triangle, fixed by eps_p, the G_f field and c_a; `tables.criterion_law` maps the
 fine cubes of side L (uniform load, six seeds, to separation) onto them:
 
     eps_p(L)   = mean peak stress(L) / E        a coarse bar starts to soften at
@@ -35,7 +35,7 @@ a cube of CALIBRATION_SIZE (never a target), against the fine lattice's,
     c_a'(L)   = c_a x fine U_num/U_min / coarse U_num/U_min
     CV(G_f)   = the material's
 
-(`mesh_tables.calibrated_law`), so that what the coarse mesh adds or loses by itself
+(`tables.calibrated_law`), so that what the coarse mesh adds or loses by itself
 (brittler bars clamped, a softer surface layer, cracking of its own) is
 measured instead of assumed to vanish."""
 from __future__ import annotations
@@ -44,16 +44,16 @@ import math
 import os
 from typing import Dict, List, Optional, Sequence
 
-from .. import io
-from ..cube import CubeTest
-from .located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
-from .mesh_report import write_mesh_report
-from .options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
-                      parse_loads, parse_names, run_options, seed_count, values_option)
-from .registry import Study, register
-from .mesh_tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
-                          summarize, variant_law)
-from .tables import case_row
+from ... import io
+from ...cube import CubeTest
+from ..located import MESH_CASE_COLUMNS, finished_rows, read_earlier, run_located
+from .report import write_mesh_report
+from ..options import (add_common, add_rerun_options, add_seeds, common_settings, parse_floats,
+                       parse_loads, parse_names, run_options, seed_count, values_option)
+from ..registry import Study, register
+from .tables import (FINE_L0, SUMMARY_COLUMNS, TRIANGULAR_FINAL_STRAIN, VARIANTS, calibrated_law, criterion_law,
+                     summarize, variant_law)
+from ..tables import case_row
 
 MESH_SIZES = (0.48, 0.72, 0.96)      # the cubes predicted with coarse modules [m]
 COARSE_MODULES = (0.04, 0.06, 0.08, 0.12)
@@ -262,4 +262,4 @@ def cmd_mesh(args) -> int:
 
 register(Study("mesh", "large cubes with coarse modules and the study's criterion, against the fine lattice",
                add_arguments, cmd_mesh, "Fine cubes of side L give the law of a coarse module of side L "
-                                        "(ldem/study/mesh.py); coarse runs of each variant against the fine lattice."))
+                                        "(ldem.study.mesh says why); coarse runs of each variant against the fine lattice."))

@@ -40,11 +40,11 @@ from typing import Callable, Dict, List, Sequence
 
 import numpy as np
 
-from .. import io
-from .bands import MIN_POINTS, Scatter, band, band_lines, cv_of_fractiles, design, inputs_share
-from .concrete import calibrate
-from .curve_quantities import MULTIPLES, load_at_opening, quantities
-from .mc2010 import lab_values, mc2010_fracture_energy
+from ... import io
+from ..bands import MIN_POINTS, Scatter, band, band_lines, cv_of_fractiles, design, inputs_share
+from ..concrete import calibrate
+from ..curve_quantities import MULTIPLES, load_at_opening, quantities
+from ..mc2010 import lab_values, mc2010_fracture_energy
 
 DESIGN_SEED = 70  # the Latin hypercube's
 POINT_SEED = 100  # point i (1, 2, ...) runs with lattice seed POINT_SEED + i: none of the prediction's 1-6
@@ -217,7 +217,7 @@ def write_band(folder: str, name: str, drawn: Sequence[Scatter], bands: Dict[str
         f"{n} points (seed {DESIGN_SEED}; `design.csv`), each point calibrated by the procedure of "
         f"docs/calibration.md at L0 = {L0 * 1e3:g} mm and run once with a lattice seed of its own "
         f"({POINT_SEED + 1}-{POINT_SEED + n}). Written by `ldem study validation {name} --band` "
-        "(ldem.study.validation_band and ldem.study.bands say how).", "",
+        "(ldem.study.validation.band and ldem.study.bands say how).", "",
         "| input | mean | CV | 5-95 % | source |", "|---|---|---|---|---|",
         *(f"| {s.name} [{UNITS[s.name][1]}] | {s.mean / UNITS[s.name][0]:.4g} | {s.cv:.3f} | "
           f"{s.ppf(0.05) / UNITS[s.name][0]:.4g}-{s.ppf(0.95) / UNITS[s.name][0]:.4g} | {s.source} |" for s in drawn), "",

@@ -1,8 +1,8 @@
-"""The lattice's own fracture energy (issue 39 item 4): the work-of-fracture
-test of RILEM TC 50-FMC (1985) on a virtual notched beam, run on a calibrated
-concrete (the JSON of `ldem study calibration`: its material and its L0) until
-the load, averaged over two fundamental periods, is below 2 % of its peak
-(a load that rings dips below that long before it is gone),
+"""The lattice's own fracture energy: the work-of-fracture test of RILEM TC
+50-FMC (1985) on a virtual notched beam, run on a calibrated concrete (the
+JSON of `ldem study calibration`: its material and its L0) until the load,
+averaged over two fundamental periods, is below 2 % of its peak (a load that
+rings dips below that long before it is gone),
 
     G_F = W / ((D - a) b),   W = int F d(delta),
 
@@ -35,12 +35,12 @@ from typing import List
 
 import numpy as np
 
-from .. import _core, io
-from ..specimen import SpecimenTest
-from .cases import Named
-from .executors import run_cases
-from .options import seed_count
-from .registry import Study, register
+from ... import _core, io
+from ...specimen import SpecimenTest
+from ..cases import Named
+from ..executors import run_cases
+from ..options import seed_count
+from ..registry import Study, register
 
 HALF_D = 0.025  # half the smallest depth [m]: RILEM's beam in half size, D = 50 mm
 MODULES = 10  # the least depth in modules
@@ -80,8 +80,8 @@ class LoadGone:
     at the platen: the core's load-loss test on each (_core.LoadLossDetector:
     bars broken, and the load averaged over the last `window` seconds, two
     fundamental periods, below `fraction` of the peak). A load that rings dips
-    below the fraction long before it is gone (Malvar-Warren S2's concrete,
-    15 % of its bars perfectly brittle, stopped at 0.8 mm on one record's dip)."""
+    below the fraction on a single record long before it is gone
+    (docs/calibration.md)."""
 
     def __init__(self, fraction: float = STOP, window: float = 0.0):
         self.peak = 0.0
@@ -171,7 +171,7 @@ def report_lines(r: dict, name: str) -> List[str]:
 
 
 def figure(out: str, r: dict, name: str) -> str:
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     D = r["beam"]["D_m"]

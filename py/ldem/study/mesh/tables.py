@@ -1,26 +1,26 @@
 """The mesh study's laws (laws.csv: the coarse bars' law for each module
 side L, by the criterion and by the calibration; the mesh module's docstring
 has the equations) and its tables: means and CVs per (load, size, module, variant,
-correlation length), each beside the fine lattice's, and the verdict of
-issue 15 (fine peak within 10 %, fine U_num within 20 %)."""
+correlation length), each beside the fine lattice's, and the verdict (the
+fine peak within 10 %, the fine U_num within 20 %)."""
 from __future__ import annotations
 
 from typing import List, Sequence
 
 import numpy as np
 
-from ..cube import CubeTest
-from .tables import mean_cv
+from ...cube import CubeTest
+from ..tables import mean_cv
 
 FINE_L0 = 0.02                       # the size-effect study's module [m]
 VARIANTS = ("plain", "law", "c_a", "criterion", "calibrated")
-TRIANGULAR_FINAL_STRAIN = 1e-3       # triangular cubes do not separate (issue 10): peak only, 7 to 14 x its strain
+TRIANGULAR_FINAL_STRAIN = 1e-3       # triangular cubes do not separate: peak only, 7 to 14 x its strain
 GROUP = ("load", "size_m", "module_m", "corr_length_m", "variant")
 SUMMARY_COLUMNS = GROUP + (
     "seeds", "separated", "peak_stress_MPa_mean", "peak_stress_MPa_cv", "strain_at_peak_mean", "strain_at_peak_cv",
     "U_ratio_mean", "U_ratio_cv", "clamped_fraction", "n_bars", "wall_s_mean", "peak_vs_fine", "strain_vs_fine",
     "U_vs_fine", "speedup", "bar_steps_mean", "work_ratio")
-PEAK_TOLERANCE, U_TOLERANCE = 0.10, 0.20   # issue 15's verdict
+PEAK_TOLERANCE, U_TOLERANCE = 0.10, 0.20   # the verdict: the fine peak within 10 %, the fine U_num within 20 %
 
 
 
@@ -115,7 +115,7 @@ def summarize(rows: Sequence[dict], reference: str = "fine") -> List[dict]:
 
 def verdict(table: Sequence[dict], size: float = 0.96, module: float = 0.06) -> List[dict]:
     """Per load and variant at (size, module): the peak's and U_num's distance
-    from the fine lattice's and whether they are within issue 15's bounds."""
+    from the fine lattice's and whether they are within PEAK_TOLERANCE and U_TOLERANCE."""
     out = []
     for t in table:
         if abs(t["size_m"] - size) > 1e-9 or abs(t["module_m"] - module) > 1e-9 or t["peak_vs_fine"] == "":

@@ -1,10 +1,10 @@
-"""Why the large uniform cubes are weaker (issue 10, item 7): one factor at a
-time on a cube (both loads), each run stopped past its peak. Per run: peak,
-its strain, damaged and broken bars at the peak (pre-peak nonlinearity) and
-where the damage is (mean height of the damaged-or-broken bars over H, and
-the share within one module of the lower face), kept in the case's
-summary.json under "ablation"; ablation.jsonl (a line per run) and the
-markdown table of the means per load and variant, against "base".
+"""Why the large uniform cubes are weaker: one factor at a time on a cube
+(both loads), each run stopped past its peak. Per run: peak, its strain,
+damaged and broken bars at the peak (pre-peak nonlinearity) and where the
+damage is (mean height of the damaged-or-broken bars over H, and the share
+within one module of the lower face), kept in the case's summary.json under
+"ablation"; ablation.jsonl (a line per run) and the markdown table of the
+means per load and variant, against "base".
 
     ldem study ablation --out DIR [--size 0.48] [--seeds 3] [--loads L,..] [--variants V,..] [--jobs J]
     ldem study ablation --table RUNS.jsonl      the markdown table of those runs"""
@@ -17,12 +17,12 @@ from typing import Callable, List, Sequence
 
 import numpy as np
 
-from .. import _core, io
-from ..cube import CubeTest
-from .options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
-from .cases import Named, case_name
-from .executors import run_cases
-from .registry import Study, register
+from ... import _core, io
+from ...cube import CubeTest
+from ..options import add_loads, add_seeds, check_tests, parameter_option, parse_loads, parse_names, seed_count
+from ..cases import Named, case_name
+from ..executors import run_cases
+from ..registry import Study, register
 
 VARIANTS = {"base": {}, "rollers": {"bottom_lateral": "free"}, "rate/2": {"strain_rate": 0.01},
             "rate*2": {"strain_rate": 0.04}, "no smooth start": {"ramp_time": 1e-9},

@@ -1,6 +1,6 @@
-"""The beams' figures (reads the tables of ldem.study.beam_tables and the cases'
+"""The beams' figures (reads the tables of ldem.study.beams.tables and the cases'
 pictures; computes nothing). Their comparison with the measurements is
-ldem.study.beam_comparison; the command line, ldem.study.beam_command."""
+ldem.study.beams.comparison; the command line, ldem.study.beams."""
 from __future__ import annotations
 
 import glob
@@ -9,13 +9,13 @@ import re
 
 import numpy as np
 
-from .beams import DEPTHS, FT, NOTCHES
+from .cases import DEPTHS, FT, NOTCHES
 
 
 def curves_figure(out: str, found: dict) -> None:
     """curves.png: load against CMOD of every seed, a panel per depth
     (found: write_curve_tables's (D, notch) -> {seed: curve})."""
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     fig, axes = plt.subplots(1, 3, figsize=(13, 4), sharey=False)
@@ -31,7 +31,7 @@ def curves_figure(out: str, found: dict) -> None:
 
 def size_effect_figure(folder, rows, fits, uniform, uniform_fits) -> None:
     """size_effect.png: sigma_N of every case against D, Bažant's law fitted."""
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots()
@@ -55,7 +55,7 @@ def size_effect_figure(folder, rows, fits, uniform, uniform_fits) -> None:
 
 def cracks_mosaic(folder) -> None:
     """cracks.png: the crack pictures of the first specimen of each beam, D across, notch down."""
-    from .. import plots  # noqa: F401  (the style)
+    from ... import plots  # noqa: F401  (the style)
     import matplotlib.image
     import matplotlib.pyplot as plt
 

@@ -1,10 +1,10 @@
-"""Why the blind prediction of Grégoire et al. (2013) is too strong (issue 28,
-item 2): one factor at a time against the prediction, on the two D = 50 mm
-beams with measurements (no notch, notch D/2) and the D = 100 mm beam with a
-notch D/5, six seeds each.
+"""Why the blind prediction of Grégoire et al. (2013) is too strong: one
+factor at a time against the prediction, on the two D = 50 mm beams with
+measurements (no notch, notch D/2) and the D = 100 mm beam with a notch D/5,
+six seeds each.
 
 A factor of the material or of the module changes what the direct tension
-prism gives, so eps_p is calibrated again on the prism for it (beams.calibrate:
+prism gives, so eps_p is calibrated again on the prism for it (cases.calibrate:
 the prism's mean strength stays f_t), as the prediction's was: the table says
 what the factor does to a beam of a concrete of the same f_t. The loading and
 bearing factors keep the prediction's eps_p.
@@ -20,11 +20,11 @@ import statistics
 from dataclasses import dataclass
 from typing import Callable, Dict, List, Sequence, Tuple
 
-from .. import io
-from ..markdown import mean_cv_cell
-from .beams import GF, PREDICTION, Beam, Variant, calibrate
-from .executors import run_cases
-from .tables import mean_cv
+from ... import io
+from ...markdown import mean_cv_cell
+from .cases import GF, PREDICTION, Beam, Variant, calibrate
+from ..executors import run_cases
+from ..tables import mean_cv
 
 BEAMS = ((0.05, 0.0), (0.05, 0.5), (0.1, 0.2))
 MEASURED_KN = {(0.05, 0.0): 4.649, (0.05, 0.5): 0.979, (0.1, 0.2): 4.496}  # ../shared/data/gregoire2013/measured.csv

@@ -1,8 +1,8 @@
-"""The Grégoire et al. (2013) beams with a measured curve, whole (issue 39
-item 2): the calibrated concrete (calibrated/material.json) run under the
-tests' probable control, a servo on a clip gauge, to past four times the
-measured CMOD at the peak; the load at 1.5, 2 and 4 times it and the work to
-the last, predicted against measured (ldem.study.curve_report).
+"""The Grégoire et al. (2013) beams with a measured curve, whole: the
+calibrated concrete (calibrated/material.json) run under the tests' probable
+control, a servo on a clip gauge, to past four times the measured CMOD at the
+peak; the load at 1.5, 2 and 4 times it and the work to the last, predicted
+against measured (ldem.study.curve_report).
 
 Why a new run set: the committed calibrated runs hold the platen, and stop
 at twice the deflection at the peak. The unnotched beams snap there, and two
@@ -24,12 +24,12 @@ from typing import Callable, Dict, List, Tuple
 
 import numpy as np
 
-from .. import io
-from .beam_comparison import NAMES, _by_beam, measured_curve
-from .beams import L0, Beam, Variant, calibrated_variant
-from .curve_quantities import MULTIPLES, quantities
-from .curve_report import figure, summarize, table_lines
-from .executors import run_cases
+from ... import io
+from .comparison import NAMES, _by_beam, measured_curve
+from .cases import L0, Beam, Variant, calibrated_variant
+from ..curve_quantities import MULTIPLES, quantities
+from ..curve_report import figure, summarize, table_lines
+from ..executors import run_cases
 
 GAUGES = {(50.0, 0.0): 0.070, (50.0, 0.5): 0.020, (100.0, 0.2): 0.020}  # [m], see the module's text
 OPENING_RATE = 0.1  # the gauge's opening rate / D [1/s], as the diagnosis's CMOD servo
@@ -112,7 +112,7 @@ def measured(band, m: dict) -> dict:
 def report(out: str, data: str, seeds: int) -> str:
     """whole_curves.md and a figure per beam, from the finished cases."""
     lines = ["# Grégoire et al. (2013): whole curves, the calibrated concrete against the measurements", "",
-             "Written by `ldem study beams whole-curves` (ldem.study.whole_curves says why each choice). The "
+             "Written by `ldem study beams whole-curves` (ldem.study.beams.whole_curves says why each choice). The "
              "concrete of `../calibrated/material.json`, after the diagnosis, not blind. Each beam under a servo "
              f"on a clip gauge opening at {OPENING_RATE:g} D/s, six seeds, run to {PAST:g} x "
              f"{MULTIPLES[-1]:g} x the measured CMOD at the peak. The quantities are read at multiples of the "

@@ -5,15 +5,15 @@ from __future__ import annotations
 import os
 from typing import List, Optional, Sequence
 
-from .. import io
-from ..cube import CubeTest
-from .cases import load_case
-from .settings import damping_tests
-from .executors import run_cases
-from .options import (add_common, check_tests, common_settings, parse_floats, parse_loads,
-                      parameter_option, values_option)
-from .registry import Study, register
-from .tables import CASE_COLUMNS, case_row
+from ... import io
+from ...cube import CubeTest
+from ..cases import load_case
+from ..settings import damping_tests
+from ..executors import run_cases
+from ..options import (add_common, check_tests, common_settings, parse_floats, parse_loads,
+                       parameter_option, values_option)
+from ..registry import Study, register
+from ..tables import CASE_COLUMNS, case_row
 
 
 def run_damping(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: Optional[str] = None,
@@ -24,7 +24,7 @@ def run_damping(tests: Sequence[CubeTest], out: str, jobs: int = 1, scheduler: O
     rows = [case_row(s) for s in summaries]
     io.write_table(os.path.join(out, "damping.csv"), rows, CASE_COLUMNS)
     if report:
-        from .. import report as figures
+        from ... import report as figures
 
         figures.damping_figures(out, [load_case(out, t) for t in tests], figure_format)
     return rows

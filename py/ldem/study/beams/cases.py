@@ -1,7 +1,7 @@
 """The beam series of Grégoire, Rojas-Solano and Pijaudier-Cabot (2013),
-"Failure and size effect for notched and unnotched concrete beams" (issue 13
-item 6), as a study (`ldem study beams`: ldem.study.beam_command): a blind
-prediction of geometrically similar beams in three-point bending, depth D =
+"Failure and size effect for notched and unnotched concrete beams", as a
+study (`ldem study beams`: ldem.study.beams): a blind prediction of
+geometrically similar beams in three-point bending, depth D =
 50, 100 and 200 mm, span 2.5 D, length 3.5 D, thickness 50 mm, notches 0, D/5
 and D/2, six random specimens each, with the material taken only from the
 properties the paper gives for its concrete (E = 37 GPa, nu = 0.21, f_t =
@@ -27,7 +27,7 @@ The material, and why:
   (PastThePeak), or at a deflection of 3e-3 D.
 
 Cases: OUT/cases/D{mm}_n{notch}_s{seed}/ (random G_f), OUT/cases_cv0/ (uniform
-G_f); tables: predictions.csv here, the size effect in beam_tables."""
+G_f); tables: predictions.csv here, the size effect in tables.py."""
 from __future__ import annotations
 
 import math
@@ -36,14 +36,14 @@ import statistics
 from dataclasses import dataclass
 from typing import Callable, List, Sequence, Tuple
 
-from .. import io
-from ..markdown import num_cell
-from .concrete import prism as tension_prism
-from .mc2010 import mc2010_fracture_energy
-from ..specimen import SpecimenTest
-from .cases import Named
-from .executors import run_cases
-from .tables import mean_cv
+from ... import io
+from ...markdown import num_cell
+from ..concrete import prism as tension_prism
+from ..mc2010 import mc2010_fracture_energy
+from ...specimen import SpecimenTest
+from ..cases import Named
+from ..executors import run_cases
+from ..tables import mean_cv
 
 E, NU, FT, FC = 37e9, 0.21, 3.9e6, 42.3e6
 GF = mc2010_fracture_energy(FC)  # fib MC2010 eq. 5.1-9 [N/m]
@@ -56,8 +56,8 @@ PREDICTION_COLUMNS = ["D_mm", "notch_ratio", "peak_load_kN", "cv", "seeds", "min
 
 @dataclass(frozen=True)
 class Variant:
-    """What a beam's run may change against the prediction's (the diagnosis of
-    issue 28 varies one at a time). material: (name, value) pairs over MATERIAL
+    """What a beam's run may change against the prediction's (the diagnosis
+    varies one at a time). material: (name, value) pairs over MATERIAL
     (Gf_mean, Gf_cv, corr_length, law, ...); L0: the module; platen: its
     width in modules; supports: each a strip of that many node lines (held
     as the one line is: a wider one also resists the beam's rotation); rate:

@@ -8,10 +8,10 @@ import os
 import shutil
 from typing import Dict
 
-from .. import io, plots
-from ..markdown import md_table, mean_cv_cell, num_cell
-from .cases import load_slice, read_discussion
-from .mesh_tables import FINE_L0, PEAK_TOLERANCE, TRIANGULAR_FINAL_STRAIN, U_TOLERANCE, VARIANTS, verdict
+from ... import io, plots
+from ...markdown import md_table, mean_cv_cell, num_cell
+from ..cases import load_slice, read_discussion
+from .tables import FINE_L0, PEAK_TOLERANCE, TRIANGULAR_FINAL_STRAIN, U_TOLERANCE, VARIANTS, verdict
 
 _STYLE = {"plain": "o--", "law": "s:", "c_a": "^:", "criterion": "D-", "calibrated": "v-"}
 _COLOUR = {"plain": "C0", "law": "C1", "c_a": "C2", "criterion": "C3", "calibrated": "C4"}  # one per variant, every panel
@@ -20,7 +20,7 @@ _COLOUR = {"plain": "C0", "law": "C1", "c_a": "C2", "criterion": "C3", "calibrat
 def against_module_figure(table, column: str, ylabel: str, tolerance: float, path: str, loads) -> None:
     """One panel per (load, size): the column's mean against the module size,
     a line per variant; the fine lattice's value drawn across with the
-    issue's tolerance band."""
+    verdict's tolerance band."""
     import matplotlib.pyplot as plt
 
     sizes = sorted({t["size_m"] for t in table})
@@ -131,7 +131,7 @@ def write_mesh_report(out: str, laws: Dict[float, dict], table, rows, missing: i
              "the laws are that run's." if kept else ""),
           "", "## The law each module size gets (from the fine uniform cubes of side L)", "",
           "eps_p = mean peak / E; E[G_f] unchanged; CV(G_f) = CV(U_num/U_min); c_a = 0.1385 x E[U_num/U_min] "
-          "(see `ldem/study/mesh.py` for the reasoning). The calibrated variant (a proposal, not the study's): "
+          "(`ldem.study.mesh` says why). The calibrated variant (a proposal, not the study's): "
           "eps_p and c_a scaled by the fine over the coarse lattice's peak and U_num/U_min on the 0.24 m cube, "
           "CV(G_f) the material's.", "",
           md_table(["L [m]", "fine peak MPa (CV)", "strain at peak (CV)", "U_num/U_min (CV), separated", "eps_p",

@@ -1,4 +1,4 @@
-"""`ldem study beams`: the Grégoire et al. (2013) beams (ldem.study.beams has
+"""`ldem study beams`: the Grégoire et al. (2013) beams (ldem.study.beams.cases has
 the why of each choice), one sub-command per step, each in the study folder
 OUT (default results/beams/gregoire2013, from where it is run):
 
@@ -6,13 +6,13 @@ OUT (default results/beams/gregoire2013, from where it is run):
     ldem study beams predict --eps-p E [--out OUT] [--seeds 6] [--jobs J]   cases/, predictions.csv
     ldem study beams uniform --eps-p E [--out OUT] [--jobs J]       G_f CV 0: cases_cv0/
     ldem study beams curves [--out OUT] [--seeds 6]                 curves/*.csv, curves.png
-    ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (beam_comparison)
+    ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (comparison)
     ldem study beams size-effect [--out OUT]                        size_effect.md|csv|png, cracks.png
-    ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (beam_diagnosis)
+    ldem study beams diagnose [--factors A,B] [--seeds 6] [--jobs J]   OUT/diagnosis/ (diagnosis)
     ldem study beams calibrated [--seeds 6] [--seeds-200 2] [--jobs J]  OUT/calibrated/
     ldem study beams whole-curves [--seeds 6] [--jobs J]            OUT/whole_curves/ (whole_curves)
     ldem study beams transfer [--on D50_n0,...] [--predict ...] [--L0 M] [--seeds 6] [--jobs J]   OUT/transfer/
-    ldem study beams convergence [--seeds 3] [--jobs J] [--beams ...] [--L0 ...]   OUT/convergence/ (beam_convergence)
+    ldem study beams convergence [--seeds 3] [--jobs J] [--beams ...] [--L0 ...]   OUT/convergence/ (convergence)
 
 Cases are resumed and run side by side as every study's (J at a time, one
 thread each); a finished case is not run again."""
@@ -21,17 +21,17 @@ from __future__ import annotations
 import json
 import os
 
-from .beam_convergence import (PLAN as CONVERGENCE_PLAN, SEEDS as CONVERGENCE_SEEDS, plan as convergence_plan,
-                               run as run_convergence)
-from .beam_comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
-from .beam_diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
-from .beam_report import cracks_mosaic, curves_figure, size_effect_figure
-from .beam_tables import write_curve_tables, write_size_effect
-from .beams import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
+from .convergence import (PLAN as CONVERGENCE_PLAN, SEEDS as CONVERGENCE_SEEDS, plan as convergence_plan,
+                          run as run_convergence)
+from .comparison import compare as compare_beams, comparison_figure, comparison_rows, default_data, table_lines
+from .diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
+from .report import cracks_mosaic, curves_figure, size_effect_figure
+from .tables import write_curve_tables, write_size_effect
+from .cases import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
                     series_tests, uniform_tests, write_predictions)
-from .concrete import calibrate as calibrate_concrete
-from .options import add_seeds, parameter_option, parse_names, seed_count
-from .registry import Study, register
+from ..concrete import calibrate as calibrate_concrete
+from ..options import add_seeds, parameter_option, parse_names, seed_count
+from ..registry import Study, register
 from .transfer import report as transfer_report, transfer as run_transfer
 from .whole_curves import beam_name, measured_beams, run as run_whole_curves
 
@@ -139,7 +139,7 @@ def whole(args) -> None:
                            seed_count(args), args.jobs))
 
 
-def transfer(args) -> None:
+def calibrate_on_one(args) -> None:
     """Calibrate on each beam of --on in turn, predict the others (transfer/PROTOCOL.md)."""
     data = args.data or default_data(args.out)
     names = {beam_name(*b): b for b in measured_beams(data)}
@@ -155,8 +155,8 @@ def transfer(args) -> None:
     print(transfer_report(args.out, data, on, seed_count(args), predict))
 
 
-def convergence(args) -> None:
-    """The peak against the module (beam_convergence), at the concrete fitted on D50_n0.5 (--fit)."""
+def converge(args) -> None:
+    """The peak against the module (convergence), at the concrete fitted on D50_n0.5 (--fit)."""
     fit = args.fit or os.path.join(os.path.dirname(os.path.abspath(args.out)), "transfer", "on_D50_n0.5", "fit.json")
     if not os.path.isfile(fit):
         raise ValueError(f"{fit} not found (the fit of `ldem study beams transfer --on D50_n0.5`)")
@@ -167,7 +167,7 @@ def convergence(args) -> None:
         raise ValueError(f"--L0 takes comma-separated modules in mm (got '{args.L0s}')") from None
     which = convergence_plan(beams, modules)
     if not which:
-        raise ValueError(f"--beams {args.beams} --L0 {args.L0s}: no run of the plan (ldem.study.beam_convergence.PLAN)")
+        raise ValueError(f"--beams {args.beams} --L0 {args.L0s}: no run of the plan (ldem.study.beams.convergence.PLAN)")
     print(run_convergence(args.out, fit, args.data or default_data(args.out), seed_count(args), args.jobs, which))
 
 
@@ -207,12 +207,12 @@ def add_arguments(b) -> None:
                                       "comparison.md|png"))
     command("size-effect", size_effect, "Bažant's law fitted per notch, the unnotched slope, the uniform-G_f "
                                         "beams beside them: size_effect.md|csv|png, cracks.png")
-    g = command("diagnose", diagnose, "one factor at a time against the prediction (issue 28): OUT/diagnosis/")
+    g = command("diagnose", diagnose, "one factor at a time against the prediction: OUT/diagnosis/")
     g.add_argument("--factors", default=",".join(f.name for f in FACTORS),
                    help="comma-separated, of: " + ", ".join(f.name for f in FACTORS))
     add_seeds(g, "beam")
     _jobs(g)
-    q = command("calibrated", calibrated, "the nine beams with the calibration procedure's concrete (issue 28): "
+    q = command("calibrated", calibrated, "the nine beams with the calibration procedure's concrete: "
                                           "OUT/calibrated/", os.path.join(OUT, "calibrated"))
     q.add_argument("--seeds", type=int, default=6, help="specimens of the D = 50 and 100 mm beams")
     q.add_argument("--seeds-200", type=int, default=2, help="specimens of the D = 200 mm beams")
@@ -224,8 +224,8 @@ def add_arguments(b) -> None:
     add_seeds(w, "beam")
     _jobs(w)
     _data(w)
-    t = command("transfer", transfer, "calibrate on one measured beam, predict the other two, by "
-                                      "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
+    t = command("transfer", calibrate_on_one, "calibrate on one measured beam, predict the other two, by "
+                                              "OUT/PROTOCOL.md: OUT/on_{beam}/, OUT/transfer.md", os.path.join(OUT, "transfer"))
     t.add_argument("--on", default="D50_n0,D50_n0.5,D100_n0.2", help="the beams to calibrate on, in turn")
     t.add_argument("--start", default="", metavar="MATERIAL.json", help="the fit's start (default: "
                    "../calibrated/material.json beside OUT, the calibrated concrete)")
@@ -234,7 +234,7 @@ def add_arguments(b) -> None:
     add_seeds(t, "predicted beam")
     _jobs(t)
     _data(t)
-    c = command("convergence", convergence, "the peak against the module L0, the concrete fitted on "
+    c = command("convergence", converge, "the peak against the module L0, the concrete fitted on "
                                             "D50_n0.5 at 5 mm: OUT/convergence.md|csv, the module rule",
                 os.path.join(OUT, "convergence"))
     c.add_argument("--beams", default="", help="comma-separated, of D50_n0.5, D50_n0, D100_n0.2 (default: all)")
@@ -256,5 +256,6 @@ register(Study("beams", "the notched beams of Gregoire et al. (2013): calibratio
                         "comparison, diagnosis", add_arguments, cmd_beams,
                "The notched beams of Gregoire et al. (2013), one sub-command per step, in the study folder OUT "
                f"(default {OUT}): calibrate finds eps_p; predict and uniform run the beams; curves, size-effect "
-               "and compare write tables and figures from the finished cases; diagnose and calibrated run the "
-               "series of issue 28. `ldem study beams COMMAND --help` says more of each."))
+               "and compare write tables and figures from the finished cases; diagnose runs one factor at a time "
+               "against the prediction, calibrated the beams with the calibration procedure's concrete. "
+               "`ldem study beams COMMAND --help` says more of each."))

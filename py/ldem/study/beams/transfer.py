@@ -1,9 +1,9 @@
-"""Calibrate on one Grégoire beam, predict the other two (issue 39 item 3), by
-the protocol committed first in results/beams/gregoire2013/transfer/PROTOCOL.md:
-eps_p and Gf_mean fitted to one measured beam's peak and its work to 4 times
-its CMOD at the peak (eps_p alone to a beam measured at its peak only), the
-mean of seeds 1-3 within 2 %, by Broyden's method in logarithms; then the
-other two beams, six seeds, against their measurements.
+"""Calibrate on one Grégoire beam, predict the other two, by the protocol
+committed first in results/beams/gregoire2013/transfer/PROTOCOL.md: eps_p and
+Gf_mean fitted to one measured beam's peak and its work to 4 times its CMOD at
+the peak (eps_p alone to a beam measured at its peak only), the mean of seeds
+1-3 within 2 %, by Broyden's method in logarithms; then the other two beams,
+six seeds, against their measurements.
 
 The fit is a pure function of one beam's measurement (Target) and of a
 function that runs the model for a material (evaluate): it cannot see the
@@ -24,12 +24,12 @@ from typing import Callable, List, Sequence, Tuple
 
 import numpy as np
 
-from .. import io
-from .beam_comparison import measured_curve
-from .curve_quantities import MULTIPLES, quantities, work_to
-from .curve_report import figure, table_lines
-from .beams import L0 as BEAMS_L0
-from .executors import run_cases
+from ... import io
+from .comparison import measured_curve
+from ..curve_quantities import MULTIPLES, quantities, work_to
+from ..curve_report import figure, table_lines
+from .cases import L0 as BEAMS_L0
+from ..executors import run_cases
 from .whole_curves import (WholeCurve, against_measured, beam_name, gauge_curve, gauge_label, measured,
                            measured_beams)
 

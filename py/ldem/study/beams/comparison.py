@@ -1,8 +1,8 @@
 """The blind prediction of the Grégoire et al. (2013) beams against their
-measurements (issue 28 item 1): comparison.md and comparison.png in the
-prediction's folder, from its predictions.csv and curves/*.csv (never changed)
-and the data folder's measured.csv and D50_*_load_cmod.csv (CMOD [mm], mean,
-min and max load [kN] over the specimens)."""
+measurements: comparison.md and comparison.png in the prediction's folder,
+from its predictions.csv and curves/*.csv (never changed) and the data
+folder's measured.csv and D50_*_load_cmod.csv (CMOD [mm], mean, min and max
+load [kN] over the specimens)."""
 from __future__ import annotations
 
 import os
@@ -10,9 +10,9 @@ from typing import Dict, List, Optional, Tuple
 
 import numpy as np
 
-from .. import io
-from ..markdown import mean_cv_cell
-from .curve_quantities import cmod_at_peak, load_at_opening, rising
+from ... import io
+from ...markdown import mean_cv_cell
+from ..curve_quantities import cmod_at_peak, load_at_opening, rising
 
 DATA = os.path.join("..", "shared", "data", "gregoire2013")  # beside the repository
 NAMES = {0.0: "no notch", 0.2: "notch D/5", 0.5: "notch D/2"}
@@ -175,7 +175,7 @@ def comparison_figure(out: str, data: str, rows: List[dict], what: str = "the bl
     curves of every seed over the measured mean and its min-max envelope, the
     peaks marked; upper row up to three times the larger CMOD at peak, lower row
     the whole range."""
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     from matplotlib.lines import Line2D

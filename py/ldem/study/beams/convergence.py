@@ -23,10 +23,10 @@ from typing import Dict, List, Sequence, Tuple
 
 import numpy as np
 
-from .. import io
-from ..module_rule import RULE_MODULES, governing_length
-from .cases import case_dir, is_finished, load_summary
-from .executors import run_cases
+from ... import io
+from ...module_rule import RULE_MODULES, governing_length
+from ..cases import case_dir, is_finished, load_summary
+from ..executors import run_cases
 from .whole_curves import WholeCurve, beam_name, measured_beams
 
 L0_FINEST = 0.05 / 30  # 1.667 mm: 30 modules over D = 50 mm (every length of the beams a whole number of them)
@@ -121,7 +121,7 @@ def report(out: str, tests: Sequence[WholeCurve], fit: str) -> str:
     lines = ["# The peak's convergence with the module (Grégoire et al. 2013)", "",
              f"The concrete of `{fit}`, unchanged at every module; each beam under the servo on its clip gauge "
              f"(as the transfer), stopped at {STOP:g} times its measured CMOD at the peak. Written by `ldem study "
-             "beams convergence` (ldem.study.beam_convergence).", "",
+             "beams convergence` (ldem.study.beams.convergence).", "",
              "| beam | L0 [mm] | modules over | bars | seeds | peak [kN], mean (min-max) | its sem | vs the finest "
              "| past its peak | steps | wall [s] |", "|---|---|---|---|---|---|---|---|---|---|---|"]
     for q in table:

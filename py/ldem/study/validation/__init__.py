@@ -1,8 +1,8 @@
-"""Blind predictions of laboratory tests (issue 28, item 5): a specimen file,
-the concrete a laboratory reported, the calibration of docs/calibration.md at
-the file's module (ldem.study.concrete.calibrate, unchanged), six random
-specimens each stopped past their peak; the peak load (mean, CV), the curves
-and the crack pictures, written before any measurement is seen.
+"""Blind predictions of laboratory tests: a specimen file, the concrete a
+laboratory reported, the calibration of docs/calibration.md at the file's
+module (ldem.study.concrete.calibrate, unchanged), six random specimens each
+stopped past their peak; the peak load (mean, CV), the curves and the crack
+pictures, written before any measurement is seen.
 
 OUT/material.json: the calibration; OUT/cases/s{seed}/: the runs (seed 1 with
 its pictures); OUT/predictions.csv, curves.csv, curves.png; OUT/cracks.png (seed 1's).
@@ -14,9 +14,9 @@ al. 2012), malvar_warren_s1 or _s2 (Malvar and Warren 1988, from f_c alone;
 with _weight: lying on the supports under gravity); OUT:
 ROOT/results/validation/NAME. Finished cases are not run again. --whole-curve
 runs nothing: OUT/whole_curve.md|png, the committed prediction's curve
-quantities (issue 39 item 2) at multiples of its own opening at the peak, the
+quantities (ldem.study.curve_quantities) at multiples of its own opening at the peak, the
 measured column left empty (the measurements stay out of the repository).
---band [--points 12]: the committed prediction's input band, OUT/band/ (validation_band)."""
+--band [--points 12]: the committed prediction's input band, OUT/band/ (ldem.study.validation.band)."""
 from __future__ import annotations
 
 import json
@@ -28,19 +28,19 @@ from typing import Callable, Dict, List
 
 import numpy as np
 
-from .. import io
-from ..specimen import SpecimenTest
-from .concrete import calibrate, slope
-from .mc2010 import lab_values
-from .curve_report import figure as curve_figure, summarize, table_lines
-from .beams import PastThePeak
-from .cases import Named
-from .executors import run_cases
-from .validation_band import (MIN_POINTS, calibrate_points, committed_curves, inputs as band_inputs, point_design,
-                              point_seeds, report as band_report)
-from .options import add_seeds, seed_count
-from .registry import Study, register
-from .tables import mean_cv
+from ... import io
+from ...specimen import SpecimenTest
+from ..concrete import calibrate, slope
+from ..mc2010 import lab_values
+from ..curve_report import figure as curve_figure, summarize, table_lines
+from ..beams.cases import PastThePeak
+from ..cases import Named
+from ..executors import run_cases
+from .band import (MIN_POINTS, calibrate_points, committed_curves, inputs as band_inputs, point_design,
+                   point_seeds, report as band_report)
+from ..options import add_seeds, seed_count
+from ..registry import Study, register
+from ..tables import mean_cv
 
 
 @dataclass(frozen=True)
@@ -64,7 +64,7 @@ SPECIMENS = {
     # Winkler, Hofstetter and Niederwieser (2001)
     "l_panel": Blind("examples/l_panel.toml", {"E": 25.85e9, "nu": 0.18, "f_t": 2.7e6, "G_F": 90.0},
                      "mean_strain", "load-point displacement [mm]", 500.0,  # gauge 0.5 m, to mm
-                     beyond=4.0),  # to 4 times its displacement at the peak (issue 41, item 6)
+                     beyond=4.0),  # to 4 times its displacement at the peak
     # García-Álvarez, Gettu and Carol (2012)
     "eccentric_notch_beam": Blind("examples/eccentric_notch_beam.toml",
                                   {"E": 33.8e9, "nu": 0.2, "f_t": 3.5e6, "G_F": 125.0, "rho": 2346.0},
@@ -192,7 +192,7 @@ def read_case(case: str, b: Blind, weight: float = 0.0) -> tuple:
 def _figure(out: str, name: str, curves: list, x_label: str, band=None, file: str = "curves.png") -> None:
     """The seeds' curves [(x, load)]; with band ({x, low, high} along the curve, and peak: a
     bands.band), its 5-95 % shaded and the peak's as a bar at the mean opening there."""
-    from .. import plots
+    from ... import plots
     import matplotlib.pyplot as plt
 
     fig, ax = plt.subplots(figsize=(6, 4))
@@ -212,7 +212,7 @@ def _figure(out: str, name: str, curves: list, x_label: str, band=None, file: st
 
 def predict_band(root: str, name: str, out: str, points: int = MIN_POINTS, jobs: int = 1,
                  log: Callable[[str], None] = print) -> str:
-    """The committed prediction's input band (ldem.study.validation_band): the
+    """The committed prediction's input band (ldem.study.validation.band): the
     points calibrated and run (those not done yet), OUT/band/band.md|csv|png."""
     b, folder = SPECIMENS[name], os.path.join(out, "band")
     concrete = SPECIMENS[b.calibration or name]  # under its weight: its concrete's calibrations, beside OUT
@@ -259,8 +259,8 @@ def _peak_note(summary: dict, row: dict) -> List[str]:
     if abs(curves / run - 1) <= 0.005:
         return []
     return [f"The peak here is the mean of each curve's largest recorded load; the prediction's (`predictions.csv`, "
-            f"each run's own peak) is {run:.3f} kN, {run / curves - 1:+.1%}: a run recorded before the load cell "
-            "(issue 41) read its peak at a single step, the top of the ringing.", ""]
+            f"each run's own peak) is {run:.3f} kN, {run / curves - 1:+.1%}: a run recorded without the load cell "
+            "read its peak at a single step, the top of the ringing.", ""]
 
 
 def add_arguments(v) -> None:
