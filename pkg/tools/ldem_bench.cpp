@@ -149,7 +149,7 @@ static int bench(int argc, char** argv, int& modules) {
 
     ldem::RunParams run;
     run.threads = threads;
-    run.stopAt = ldem::StopAt::LoadLoss;  // the damaged case's run (the elastic timing calls step() alone)
+    run.stopAt = ldem::stopNamed("load_loss");  // the damaged case's run (the elastic timing calls step() alone)
     run.lossStopStrainRatio = 0;  // at the load loss itself, as before that stop had a floor
     const ldem::Comm& comm = ldem::Comm::world();
     const auto t0 = std::chrono::steady_clock::now();

@@ -277,10 +277,6 @@ PYBIND11_MODULE(_core, m) {
     m.attr("RATE_PERIODS") = kRatePeriods;
     m.def("drive_step", &driveStep, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
           "the drive's displacement in one step over eps_p x the gauge length");
-    m.def("refuse_drive_jump", &refuseDriveJump, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
-          "ValueError when the drive moves by eps_p or more in one step (Simulation.run refuses such a run)");
-    m.def("refuse_drive_crawl", &refuseDriveCrawl, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
-          "ValueError when the drive takes more than a million steps to strain eps_p (Simulation.run refuses it too)");
     m.def("brittle_warning", &brittleWarning, py::arg("material"), py::arg("L0"),
           "a warning ('' if none) when the bars of the mean G_f are perfectly brittle by construction");
     m.def("brittle_fracture_energy", &brittleFractureEnergy, py::arg("material"), py::arg("L0"), py::arg("diagonal"),
@@ -465,7 +461,7 @@ PYBIND11_MODULE(_core, m) {
         .def("measure", &Simulation::measure)
         .def_property_readonly("lattice", &Simulation::lattice, py::return_value_policy::reference_internal)
         .def_property_readonly("dt", &Simulation::dt)
-        .def_property_readonly("strain_rate", [](const Simulation& s) { return s.loading().strainRate; },
+        .def_property_readonly("strain_rate", [](const Simulation& s) { return s.drive().strainRate; },
                                "the strain rate driven [1/s]: strain_rate, or rule (c)'s from rate_periods")
         .def_property_readonly("dt_limit", &Simulation::stableTimeStepLimit)
         .def_property_readonly("omega1", [](const Simulation& s) { return s.frequencies().omega1; })

@@ -71,6 +71,35 @@
 #include "ldem/dynamics/CrackPace.hpp"
 #include "ldem/dynamics/Part.hpp"
 
+// Its parameters.
+#define LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                    \
+    X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                            \
+      "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")           \
+    X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                          \
+      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at its floor "   \
+      "(the chains are taut); below, at most floor x tail_load / (support stress / peak)")                   \
+    X(double, tailDrag, "tail_drag", 0.03, "", Domain::open(0, 1),                                           \
+      "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "\
+      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height, at every instant "  \
+      "from the load loss on")                                                                               \
+    X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                      \
+      "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "  \
+      "over the record's steps")                                                                             \
+    X(double, crackPace, "crack_pace", 1.0, "", Domain::openClosed(0, 1),                                    \
+      "tail_drive adaptive: the drive's velocity factor (over strain_rate) before the load loss while the "  \
+      "lattice moves by itself (crack_kinetic; 1: never slowed, a file's default; 0.0625: the cube's, "       \
+      "cubeOwnDefaults in ParameterTable.hpp; dynamics/CrackPace.hpp)")                                     \
+    X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
+      "tail_drive adaptive: the kinetic energy less the drive's quasi-static motion, over the external "     \
+      "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)") \
+    X(double, crackSecant, "crack_secant", 0.0, "", Domain::closed(0, 1),                                    \
+      "tail_drive adaptive: the drive also slows to crack_pace near the peak, while the curve's secant "      \
+      "stress / strain is below crack_secant x its elastic value and the stress above crack_band x the "     \
+      "peak so far (0: off, a file's default; 0.9: the cube's; dynamics/CrackPace.hpp)")                     \
+    X(double, crackBand, "crack_band", 0.5, "", Domain::open(0, 1),                                          \
+      "tail_drive adaptive: crack_secant's band: the stress, over the peak so far, below which the curve "    \
+      "is past its snap and the drive is no longer slowed for its secant")
+
 namespace ldem {
 
 class AdaptiveDrive {
@@ -129,11 +158,23 @@ private:
 class AdaptiveTailDrive {
 public:
     static constexpr const char* name = "adaptive";
+    static constexpr const char* doc =
+        "ramped in to loss_speedup the same way, then faster while no bar softens and the chains are slack, "
+        "within bounds of drag and inertia: tail_max_speedup, tail_load, tail_drag, tail_step";
+    static constexpr bool kChoice = true;
     struct Params {
         LDEM_ADAPTIVE_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     AdaptiveTailDrive(const ConstantRateDrive& fixed, const AdaptiveDrive::Limits& l, const CrackPace::Limits& pace = {})
         : fixed_(fixed), tail_(l), lim_(l), pace_(pace) {}
+    // Its bounds are set once the record interval is known (setUp).
+    AdaptiveTailDrive(const Params& p, const DriveSetup& s)
+        : AdaptiveTailDrive(ConstantRateDrive(ConstantRateDrive::Params{}, s), AdaptiveDrive::Limits{}) {
+        p_ = p, setup_ = s;
+    }
+    // Refuses tail_max_speedup below loss_speedup; undamped (D_f = 0) the fixed drive stands in.
+    static const char* select(const Params& p, const DriveSetup& s, bool chosen);
+    void setUp(const RunSetup& r);
     double now(double t, double dt) const {
         if (tail_.active()) return tail_.U;
         return pace_.on() ? program().displacement(pace_.tau) : fixed_.now(t, dt);
@@ -172,6 +213,8 @@ private:
     AdaptiveDrive tail_;
     AdaptiveDrive::Limits lim_;  // floor: loss_speedup
     CrackPace pace_;
+    Params p_;
+    DriveSetup setup_;
 };
 
 }  // namespace ldem

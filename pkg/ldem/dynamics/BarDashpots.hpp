@@ -39,8 +39,15 @@
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Parameters.hpp"
-#include "ldem/RunParams.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
+    X(double, zetaHigh, "zeta_high", 0.2, "", Domain::closedOpen(0, 1),                                      \
+      "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
+      "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
+      "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
+      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
 
 namespace ldem {
 
@@ -62,9 +69,9 @@ public:
         d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
         if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
     }
-    BarDashpots(const RunParams& run, const DampingSetup& s)
-        : BarDashpots(LDEM_PART_PARAMS(Params, LDEM_BAR_DASHPOT_PARAMETERS, run), s) {}
     bool on() const { return d_.beta > 0; }
+    double coefficient() const { return 0.0; }  // no mass-proportional term
+    double lag() const { return 0.0; }
     double beta() const { return d_.beta; }  // [s]
     double stepFactor() const { return dampedStepFactor(zeta_); }
     CentralDifference nodeUpdate(const CentralDifference& cd) {

@@ -44,22 +44,26 @@ struct Drive {
     double speedup = 1;   // velocity factor after speedupStart
     double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
     double speedupRamp = 0;  // t_q, the speed-up's ramp [s]
+    double strainRate = 0;   // v0 / the gauge length [1/s]
     double displacement(double t) const;
 };
 
 class ConstantRateDrive {
 public:
     static constexpr const char* name = "fixed";
-    struct Params {
-        LDEM_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
-        LDEM_SPEEDUP_PARAMETERS(LDEM_DECLARE_MEMBER)
-    };
+    static constexpr const char* doc = "loss_speedup times as fast once the load is lost, ramped in once";
+    static constexpr bool kChoice = true;
+    struct Params {};
     ConstantRateDrive() = default;  // at rest: v0 = 0
     // v0 = strain_rate x the gauge length; the ramp ramp_time, or two fundamental periods (0).
-    ConstantRateDrive(const Params& p, double gaugeLength, double period1)
+    ConstantRateDrive(const ProgramParams& p, double gaugeLength, double period1)
         : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {
-        program_.speedupRamp = program_.rampTime;
+        program_.speedupRamp = program_.rampTime, program_.strainRate = p.strainRate;
     }
+    ConstantRateDrive(const Params&, const DriveSetup& s)
+        : ConstantRateDrive(s.program, s.gaugeLength, 2 * 3.14159265358979323846 / s.omega1) {}
+    static const char* select(const Params&, const DriveSetup&, bool) { return name; }
+    void setUp(const RunSetup&) {}
     double now(double t, double) const { return program_.displacement(t); }
     double before(double t, double dt) const { return program_.displacement(t - dt); }
     double next(const DriveStep& c) const { return program_.displacement(c.time + c.dt); }

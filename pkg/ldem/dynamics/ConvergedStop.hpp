@@ -18,6 +18,12 @@
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
+// Its parameters.
+#define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
+    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                             \
+      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "\
+      "the mean strain since load loss, with the load still below stop_fraction x peak")
+
 namespace ldem {
 
 class EnergyConvergence {
@@ -40,10 +46,14 @@ private:
 class ConvergedStop {
 public:
     static constexpr const char* name = "converged";
+    static constexpr const char* doc =
+        "separation or, for a specimen that hinges (triangular), U no longer growing after load loss";
+    static constexpr bool kChoice = true, kAlways = false;
     struct Params {
         LDEM_CONVERGED_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     explicit ConvergedStop(const Params& p) : convergence_(p.convergedGrowth) {}
+    void setUp(const RunSetup&) const {}
     void record(StopRecord& r);
     const char* reason(const CurvePoint&, const RunSummary& s) const {
         return s.converged.reached() ? "converged" : nullptr;

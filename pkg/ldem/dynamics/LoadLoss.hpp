@@ -13,6 +13,13 @@
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Record.hpp"
 
+// Its parameters.
+#define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \
+    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                             \
+      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")\
+    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                     \
+      "averaging time of the load-loss test (0: two fundamental periods)")
+
 namespace ldem {
 
 class LoadLossDetector {

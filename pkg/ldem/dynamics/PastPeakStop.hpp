@@ -16,15 +16,23 @@
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
+// Its parameters.
+#define LDEM_PAST_PEAK_STOP_PARAMETERS(X)                                                                    \
+    X(double, peakStopStrainRatio, "peak_stop_strain_ratio", 10.0, "", Domain::atLeast(1),                   \
+      "stop_at past_peak: the run ends at this multiple of the mean strain at the peak, lost load or not")
+
 namespace ldem {
 
 class PastPeakStop {
 public:
     static constexpr const char* name = "past_peak";
+    static constexpr const char* doc = "peak_stop_strain_ratio x the strain at the peak";
+    static constexpr bool kChoice = true, kAlways = false;
     struct Params {
         LDEM_PAST_PEAK_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     explicit PastPeakStop(const Params& p) : p_(p) {}
+    void setUp(const RunSetup&) const {}
     void record(StopRecord&) {}
     const char* reason(const CurvePoint& p, const RunSummary& s) const {
         const bool peaked = s.strainAtPeak > 0;

@@ -14,11 +14,17 @@
 // own opens the mouth ahead of the program (c > c*), and the drive backs off.
 // Parameters: LDEM_SERVO_PARAMETERS (opening_rate); the program (v_max, the ramp) is the fixed drive's.
 #pragma once
+#include <stdexcept>
 #include <vector>
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/ConstantRateDrive.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_SERVO_PARAMETERS(X)                                                                             \
+    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                   \
+      "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
 
 namespace ldem {
 
@@ -40,6 +46,8 @@ struct Servo {
 class ServoDrive {
 public:
     static constexpr const char* name = "servo";
+    static constexpr const char* doc = "opening control: the controlled probe opens at opening_rate";
+    static constexpr bool kChoice = false;  // the drive of every specimen with a controlled probe
     struct Params {
         LDEM_SERVO_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
@@ -47,6 +55,15 @@ public:
     ServoDrive(const Params& p, const ConstantRateDrive& fixed, double Df) : program_(fixed.program()) {
         servo_.rate = p.openingRate, servo_.gain = 0.5 * Df;
     }
+    ServoDrive(const Params& p, const DriveSetup& s) : ServoDrive(p, ConstantRateDrive(ConstantRateDrive::Params{}, s), s.Df) {}
+    // Refuses opening control without opening_rate, and opening_rate without opening control.
+    static const char* select(const Params& p, const DriveSetup& s, bool) {
+        if (s.openingControl != (p.openingRate > 0))
+            throw std::invalid_argument(s.openingControl ? "opening control (a controlled probe) needs opening_rate > 0"
+                                                         : "opening_rate needs a controlled probe (measure.control)");
+        return name;
+    }
+    void setUp(const RunSetup&) {}
     double now(double, double) const { return servo_.U; }
     double before(double, double) const { return servo_.Uprev; }
     double next(const DriveStep& c) {
