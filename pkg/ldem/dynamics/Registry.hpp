@@ -17,6 +17,7 @@
 #include "ldem/dynamics/AdaptiveDrive.hpp"
 #include "ldem/dynamics/BarDashpots.hpp"
 #include "ldem/dynamics/ConstantRateDrive.hpp"
+#include "ldem/dynamics/ConstantVelocityDrive.hpp"
 #include "ldem/dynamics/ConvergedStop.hpp"
 #include "ldem/dynamics/FinalStrainStop.hpp"
 #include "ldem/dynamics/LoadLoss.hpp"
@@ -30,7 +31,8 @@
 #define LDEM_DRIVES(P, X)                                      \
     P(ConstantRateDrive, LDEM_NO_PARAMETERS, X)                \
     P(AdaptiveTailDrive, LDEM_ADAPTIVE_DRIVE_PARAMETERS, X)    \
-    P(ServoDrive, LDEM_SERVO_PARAMETERS, X)
+    P(ServoDrive, LDEM_SERVO_PARAMETERS, X)                    \
+    P(ConstantVelocityDrive, LDEM_CONSTANT_VELOCITY_PARAMETERS, X)
 #define LDEM_DAMPINGS(P, X)                                    \
     P(MassDamping, LDEM_MASS_DAMPING_PARAMETERS, X)            \
     P(BarDashpots, LDEM_BAR_DASHPOT_PARAMETERS, X)
