@@ -361,6 +361,28 @@ PYBIND11_MODULE(_core, m) {
 
     // The laws' names, in registry order (laws/Registry.hpp): the choices of the `law` parameter.
     m.attr("bar_laws") = barLawNames();
+    // The dynamic parts' registry (pkg/ldem/dynamics/Registry.hpp): each part's family, name, doc and parameters.
+    {
+        py::list parts;
+        auto row = [&](const char* family, const char* name, const char* doc, bool choice,
+                       std::vector<std::string> params) {
+            py::dict d;
+            d["family"] = family, d["name"] = name, d["doc"] = doc, d["choice"] = choice, d["parameters"] = params;
+            parts.append(d);
+        };
+#define LDEM_PARAM_NAME(type, member, name, def, unit, domain, help) name,
+#define LDEM_DRIVE_ROW(Type, LIST, X) row("drive", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
+#define LDEM_STOP_ROW(Type, LIST, X) row("stop", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
+#define LDEM_DAMPING_ROW(Type, LIST, X) row("damping", Type::name, "", false, {LIST(LDEM_PARAM_NAME)});
+        LDEM_DRIVES(LDEM_DRIVE_ROW, _)
+        LDEM_DAMPINGS(LDEM_DAMPING_ROW, _)
+        LDEM_STOPS(LDEM_STOP_ROW, _)
+#undef LDEM_PARAM_NAME
+#undef LDEM_DRIVE_ROW
+#undef LDEM_STOP_ROW
+#undef LDEM_DAMPING_ROW
+        m.attr("dynamic_parts") = parts;
+    }
     // Every law's one-bar functions (pkg/ldem/laws/), for tests and for anyone who wants to plot them.
     forEachLawType([&](auto* law) {
         std::remove_pointer_t<decltype(law)>::singles([&](const char* name, const char* doc, auto f, auto... args) {
@@ -468,6 +490,8 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
+        .def_property_readonly("part_names", &Simulation::partNames,
+                               "the run's dynamic parts by role and name, as in a checkpoint (drive_adaptive, ...)")
         .def("faces_joined", &Simulation::facesJoined, "some chain of intact bars joins the upper and lower faces")
         .def_property_readonly("ramp_time", &Simulation::rampTime)
         .def_property_readonly("split_window", &Simulation::splitWindow)

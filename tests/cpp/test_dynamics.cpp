@@ -531,7 +531,7 @@ TEST(Dynamics, WeightIsCarriedByTheHeldFacesAndItsWorkBalances) {
     m.epsP = 1e-2, m.GfMean = 1e6, m.GfCV = 0;  // elastic throughout
     LoadingParams lp;
     RunParams rp;
-    rp.threads = 1, rp.zeta = 1.0, rp.gravity = 100.0;
+    rp.threads = 1, rp.zeta = 1.0, rp.gravity = 100.0, rp.recordEvery = 1;  // each state read alone
     Simulation sim(heldCube(m, lp), m, lp, rp);
     const Lattice& lat = sim.lattice();
     double weight = 0;  // of the nodes whose z is free
@@ -571,7 +571,7 @@ TEST(Dynamics, TheWeightRisesWithoutRingingTheSpecimen) {
     auto ringing = [&](bool sudden) {
         LoadingParams lp;
         RunParams rp;
-        rp.threads = 1, rp.zeta = 0.0, rp.gravity = 100.0;
+        rp.threads = 1, rp.zeta = 0.0, rp.gravity = 100.0, rp.recordEvery = 1;  // each state read alone
         Simulation probe(heldCube(m, lp), m, lp, rp);
         if (sudden) lp.rampTime = 0.5 * probe.dt();
         Simulation sim(heldCube(m, lp), m, lp, rp);
