@@ -1,68 +1,17 @@
-// The adaptive drive after the load loss (tail_drive adaptive): the engine
-// (AdaptiveDrive) and the drive part that uses it (AdaptiveTailDrive), which
-// before the load loss slows while the cracks run (CrackPace.hpp).
-// Parameters: LDEM_ADAPTIVE_DRIVE_PARAMETERS (tail_max_speedup, tail_load, tail_drag, tail_step; the pace's
-// crack_pace, crack_kinetic);
-// loss_speedup caps its floor.
-//
-// Between the load loss and separation the specimen is mostly chains straightening; what
-// loads them beyond their static share is the drag of the mass-proportional
-// damping (on absolute velocity) and inertia, both in proportion to the
-// drive's speed (results/separation/speedup_sweep.md). Past its load loss a
-// specimen hangs from the drive on its chains (or a triangular cube on its
-// hinge), and the part above them moves with it (0.48 m, seed 2: the whole
-// cube, K = M v^2 / 2). The stress that the drive's own motion puts on that
-// part's face is rho H (a + D_f v) at most (H the gauge length, v = S v0 the
-// most-pulled point's velocity); from the load loss on, at every instant,
-//   rho H v0 (dS/dt + D_f S) <= tail_drag x peak.                        (1)
-// Its steady form is S <= S_d = tail_drag peak / (rho H v0 D_f).
-//
-// The ramp. From the load loss the drive speeds up to the floor
-//   S_f = clamp(S_d / 2, 1, loss_speedup)
-// (half of the budget left to drag once there) along the fixed drive's smooth
-// ramp, S(t) = 1 + (S_f - 1)(1 - cos(pi t / t_q)) / 2, over
-//   t_q = max(t_r, pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1)))),
-// the shortest such ramp within (1): the largest of (1)'s left side over the
-// ramp is rho H v0 D_f [(S_f + 1)/2 + sqrt(A^2 + (S_f - 1)^2 / 4)],
-// A = pi (S_f - 1) / (2 D_f t_q), and it equals the budget rho H v0 D_f S_d at
-// that t_q. Where (1) allows the fixed drive's ramp (S_f = loss_speedup,
-// t_q = t_r), it is that ramp, bit for bit. (Measured without it: the fixed
-// ramp to 20, a = 145 m/s^2 at every size, broke bars in the hanging
-// triangular cubes, +3.7 % of U_min at 0.48 m by mean strain 4e-3, +12 % at
-// 0.72 m, +22 % at 0.96 m; results/separation/study_in_an_hour.md.)
-//
-// From the end of the ramp on, U is state and its velocity factor S >= S_f
-// follows, record by record, a quasi-static criterion on state n:
-//   softening    the fracture energy grew since the last record (some bar's damage moved);
-//   chain load   c = |<s_support>| / peak: what the chains carry to the fixed
-//                face, against the specimen's strength; it rises as a chain
-//                straightens, before its bars soften. <.> is an exponential
-//                average over tau (the split window, two fundamental periods):
-//                a specimen rings after its load loss, a free vibration the
-//                drive neither makes nor feeds;
-//   target       S_f while softening, else clamp(S_f tail_load / c, S_f, tail_max_speedup):
-// back at the floor whenever a bar softens or the chains carry
-// tail_load x peak, faster in inverse proportion to their load while slack.
-// The speed then moves towards the target within three bounds per record:
-// - the ratio tail_step;
-// - (1) over the record interval T = R dt, a = (S_1 - S_0) v0 / T over it:
-//       S_1 <= (B + S_0) / (1 + D_f T),   S_1 >= S_0 - B,   B = tail_drag peak T / (rho H v0)
-//   (measured without it, 0.48 m seed 2: a factor of 1.1 per record from 20
-//   to 60 broke bars in the hanging cube and doubled U);
-// - never below S_f.
-// Undamped (zeta 0) the drive stays fixed (Registry.cpp: makeDrive).
-// With tail_damping relative (MassDamping.hpp) the damping acts, from the load
-// loss on, on v - vbar: a part that moves with the drive at a steady speed has
-// no drag, and D_f S leaves (1); a speed-up's mean lags by at most tau dv/dt, so
-//   rho H v0 (1 + D_f tau) dS/dt <= tail_drag x peak:
-// column carries the factor 1 + D_f tau and dampingT is 0 (S_d infinite: the
-// floor is loss_speedup, its ramp the shortest within inertia's bound, and
-// the record-wise bound S_1 <= S_0 + B).
-// Within a record interval of R steps the velocity ramps linearly from S_0
-// (the factor at the record) to S_1:
-//   v_k = v0 (S_0 + (S_1 - S_0)(k + 1)/R),   k = 0..R-1 the step in the interval,
-// so that it never jumps by more than |S_1 - S_0| v0 / R <= (tail_step - 1)
-// max(S_0, S_1) v0 / R in a step; U(n+1) = U(n) + dt v_k.
+// The adaptive drive after the load loss (tail_drive adaptive), and before it the
+// pace of CrackPace.hpp. Past its load loss a specimen hangs from the drive on its
+// chains; the drive's drag and inertia load them, so that from the load loss on
+//   rho H v0 (dS/dt + D_f S) <= tail_drag x peak          (1)
+// (S the velocity factor, H the gauge length). From the load loss S ramps as the
+// fixed drive's smooth ramp to the floor S_f = clamp(S_d/2, 1, loss_speedup),
+// S_d = tail_drag peak / (rho H v0 D_f), over the shortest time within (1),
+// t_q = max(t_r, pi (S_f - 1) / (2 D_f sqrt((S_d - S_f)(S_d - 1)))); then, record
+// by record, S heads for S_f while a bar softens, else S_f tail_load / c (c: the
+// support's stress over the peak, averaged over the split window), within the
+// ratio tail_step, (1) over the record (S_1 <= (B + S_0)/(1 + D_f T), S_1 >= S_0 - B,
+// B = tail_drag peak T / (rho H v0)), and never below S_f, ramped linearly over the
+// record's steps. Relative tail damping (MassDamping.hpp): D_f T = 0, the column
+// x (1 + D_f tau). Measured: results/dynamics/README.md.
 #pragma once
 #include <vector>
 

@@ -1,5 +1,5 @@
-// Stop at the final strain, if the event has not come. Always on.
-// Parameters: LDEM_FINAL_STRAIN_STOP_PARAMETERS (final_strain).
+// Stop at the final strain, if the event has not come. In every run; one before
+// the first record of the default interval is refused (results/dynamics/README.md).
 #pragma once
 #include <stdexcept>
 #include <string>
@@ -29,9 +29,8 @@ public:
     const char* reason(const CurvePoint& p, const RunSummary&) const {
         return p.meanStrain < p_.finalStrain ? nullptr : "final_strain";
     }
-    // A run that would stop before the first record of the default interval has next to no
-    // curve, and its energies are of the smooth start's first steps (--final-strain 1e-9
-    // stopped after 29 steps with a balance error of 9e-2, blamed on the integration).
+    // A run that would stop before its first record has next to no curve, and its energies
+    // are of the smooth start's first steps.
     void setUp(const RunSetup& r) const {
         if (p_.finalStrain > r.firstRecord) return;
         throw std::invalid_argument("final_strain " + formatNumber(p_.finalStrain) + " comes before the first record "

@@ -3,7 +3,6 @@
 // carries load. The reaction rings around zero for a while after the last
 // large ruptures, so the stress averaged over the last `window` seconds (two
 // fundamental periods by default) must be below fraction x peak.
-// Parameters: LDEM_LOAD_LOSS_PARAMETERS (stop_fraction, split_window).
 #pragma once
 #include <cstdint>
 #include <deque>

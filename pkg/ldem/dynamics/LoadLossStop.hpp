@@ -1,11 +1,7 @@
-// Stop at the load loss (stop_at load_loss): the event is the load-loss
-// detector's (LoadLoss.hpp), this rule only ends the run there, and never
-// before loss_stop_strain_ratio x the mean strain at the peak. The floor is for
-// a specimen whose load falls fast after its peak (a small uniform cube): its
-// crack picture and the softening branch of its curve need the strain to move
-// on past the peak before the run ends (the size-effect study's triangular half
-// stops here: issue 41).
-// Parameters: LDEM_LOAD_LOSS_STOP_PARAMETERS (loss_stop_strain_ratio).
+// stop_at load_loss: the event is the load-loss test's (LoadLoss.hpp); this
+// rule ends the run there, and never before loss_stop_strain_ratio x the mean
+// strain at the peak, so that a specimen whose load falls fast after its peak
+// (a small uniform cube) keeps its softening branch and its crack in the record.
 #pragma once
 #include <vector>
 

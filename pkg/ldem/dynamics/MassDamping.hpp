@@ -1,32 +1,13 @@
-// Mass-proportional damping (LDEM_SPEC section 5): the force -D_f m v on
-// every node, D_f = 2 zeta omega_1, the damping ratio zeta on the fundamental
-// mode (every mode i has 2 zeta_i omega_i = D_f); damping_omega > 0 states zeta
-// on that frequency instead, D_f = 2 zeta damping_omega. It enters the node update of
-// central differences (Integrator.hpp) through the coefficients a and b of
-// CentralDifference; its work is the integrator's. It adds no bar force.
-// Parameters: LDEM_MASS_DAMPING_PARAMETERS (zeta, tail_damping, damping_filter_periods).
-//
-// tail_damping relative (issue 41 item 4): past its load loss a specimen's
-// upper part hangs from the drive and moves with it; -D_f m v drags it with
-// the drive's speed and breaks chains a quasi-static test would not. From the
-// record that finds the load loss on, the force is -D_f m (v - vbar), vbar
-// each node's velocity low-passed with the time constant
-// tau = damping_filter_periods x 2 pi/omega_1,
-//   vbar' = (v - vbar) / tau,   vbar = v at the switch.
-// A steady motion (vbar = v) is not dragged. For v = V e^{i omega t}, vbar =
-// V/(1 + i omega tau), so v - vbar = v i omega tau / (1 + i omega tau): the
-// part in phase with v, v (omega tau)^2 / (1 + (omega tau)^2), is damping of
-// ratio
-//   zeta(omega) = (D_f / (2 omega)) (omega tau)^2 / (1 + (omega tau)^2),
-// the absolute damping's ratio times (omega tau)^2 / (1 + (omega tau)^2):
-// at omega_1 with tau = 2 T_1, omega_1 tau = 4 pi, 0.9937; the part in
-// quadrature, -D_f m omega^2 tau / (1 + (omega tau)^2) x (a negative
-// stiffness), shifts omega^2 by D_f tau / (1 + (omega tau)^2) relative: 0.2 %
-// at omega_1 with zeta 0.02. During a speed-up of acceleration a the mean
-// lags v by at most a tau: the drag is at most D_f tau m a (AdaptiveDrive.hpp).
-// Before the load loss nothing changes, bit for bit. Its state: whether it
-// switched, and vbar of every node (node-local: a rank moves the vbar of the
-// nodes it advances; no halo reads it).
+// Mass-proportional damping (LDEM_SPEC section 5): the force -D_f m v on every
+// node, D_f = 2 zeta omega_1 (or 2 zeta damping_omega), in the node update of
+// central differences (Integrator.hpp). tail_damping relative: from the record of
+// the load loss on, -D_f m (v - vbar), vbar each node's velocity low-passed,
+//   vbar' = (v - vbar) / tau,   tau = damping_filter_periods x 2 pi/omega_1,
+// so that a part that moves with the drive is not dragged; a vibration at omega
+// keeps the share (omega tau)^2 / (1 + (omega tau)^2) of its damping (0.9937 at
+// omega_1, tau = 2 T_1), and a speed-up of acceleration a is dragged by at most
+// D_f tau m a (AdaptiveDrive.hpp). Its state: whether it switched, and vbar
+// (node-local: a rank moves the vbar of the nodes it advances).
 #pragma once
 #include <stdexcept>
 #include <vector>

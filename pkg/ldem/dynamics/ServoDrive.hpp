@@ -1,18 +1,10 @@
-// Opening control: the drive moves so that an opening c (a probe, e.g. the
-// CMOD) follows the program c*(t) = r S(t), S the smooth ramp above. The drive
-// displacement U is state, advanced once per step from state n:
+// Opening control: the drive moves so that an opening c (a probe, e.g. the CMOD)
+// follows c*(t) = r S(t), S the smooth ramp. U is state, advanced from state n:
 //   U(n+1) = U(n) + dt clamp((r S'(t) + g (c*(t) - c)) / a, -v_max S'(t), v_max S'(t)),  t = t_n + dt/2,
-// with a = c / U the secant ratio of opening to drive displacement (unknown,
-// and the velocity v_max S'(t), until both have moved): the velocity that
-// opens the mouth at the program's rate, plus a correction of the lag at the
-// rate g [1/s]. v_max (Drive::v0, displacement control's rate) is the actuator's
-// speed limit, reached smoothly. Why g = D_f / 2: with mass-proportional
-// damping every mode has 2 zeta_i omega_i = D_f, and the integral loop
-// U' = (g/a) (c* - c) around a mode that opens the mouth as c = a_t U crosses
-// -180 degrees at omega_i with the gain (g/a) a_t / D_f; below 1, stable, as
-// long as the tangent ratio a_t < 2a. Past the peak a crack that runs on its
-// own opens the mouth ahead of the program (c > c*), and the drive backs off.
-// Parameters: LDEM_SERVO_PARAMETERS (opening_rate); the program (v_max, the ramp) is the fixed drive's.
+// a = c / U the secant ratio, v_max the displacement program's v0 (the actuator's
+// limit). g = D_f / 2: with mass-proportional damping every mode has 2 zeta_i
+// omega_i = D_f, and the loop U' = (g/a)(c* - c) around a mode crosses -180
+// degrees with the gain (g/a) a_t / D_f, below 1 while the tangent ratio a_t < 2a.
 #pragma once
 #include <stdexcept>
 #include <vector>
