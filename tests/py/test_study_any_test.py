@@ -99,7 +99,7 @@ def test_past_the_peak_waits_for_the_supports_to_carry_the_push():
 
 
 def test_the_ablation_table_reads_the_committed_runs():
-    path = os.path.join(ROOT, "results", "separation", "ablation", "peak_ablation_0.48m_seeds1-3.jsonl")
+    path = os.path.join(ROOT, "results", "ablation", "peak_ablation_0.48m_seeds1-3.jsonl")
     runs = ablation.read_runs(path)
     table = ablation.ablation_table(runs).splitlines()
     base = [r for r in runs if r["load"] == "uniform" and r["variant"] == "base"]

@@ -86,7 +86,7 @@ def test_the_ablation_runs_as_a_study_command(tmp_path, cli):
 
 
 def test_the_ablation_table_of_committed_runs(cli):
-    path = os.path.join(ROOT, "results", "separation", "ablation", "peak_ablation_0.48m_seeds1-3.jsonl")
+    path = os.path.join(ROOT, "results", "ablation", "peak_ablation_0.48m_seeds1-3.jsonl")
     r = cli("study", "ablation", "--table", path)
     assert r.returncode == 0 and r.stdout == ablation.ablation_table(ablation.read_runs(path))
     r = cli("study", "ablation", "--size", "0.04")

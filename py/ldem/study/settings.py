@@ -21,7 +21,7 @@ from ..cube import CubeTest
 STUDY_STOP = {"uniform": "separation", "triangular": "past_peak"}
 TRIANGULAR_STOPS = ("past_peak", "load_loss", "converged")
 TRIANGULAR_CONVERGED_COST = ("about 55 min a 0.96 m case on 2 cores, 5.5 h for its six seeds, measured with the "
-                             "fixed tail drive of 6863836 (results/separation/study_in_an_hour.md); today's drive "
+                             "fixed tail drive of 6863836 (results/archive/size-effect/study_in_an_hour.md); today's drive "
                              "bounds its drag and was not timed so far")
 
 
@@ -52,7 +52,7 @@ def tail_settings(size: float) -> dict:
 # quarter rate: paced, the 0.48 and 0.72 m cubes pass it in both loads (peaks
 # within 0.08 %, energies within 1.61 %), and the 0.96 m cube's energy moves by
 # +4.5 % at a mean strain of 5e-4 (+13.0 % without). It cost the study 1.71
-# times its thread-seconds (results/separation/study_paced/), the study with
+# times its thread-seconds (results/archive/size-effect/study_paced/), the study with
 # TRIANGULAR_TAIL_FRACTION below 0.77 of that (study_hinge/). --set
 # crack_pace=1 runs the constant rate. A crack runs while bars soften and the
 # specimen's own kinetic energy is above crack_kinetic x the work: at 1e-3 the
