@@ -73,3 +73,15 @@ def test_a_drive_a_damping_and_a_stop_run_chosen_by_name_on_a_tiny_cube():
     # Never sped up: the mean strain at the end is v t / H past the ramp, whatever the load did.
     strain, time = result.curve["mean_strain"][-1], result.curve["time_s"][-1]
     assert strain == pytest.approx(v * (time - sim.ramp_time / 2) / 0.04, rel=1e-9)
+
+
+@pytest.mark.parametrize("drive", [p["name"] for p in PARTS if p["family"] == "drive" and p["choice"]])
+def test_the_report_says_what_each_drive_does_once_the_load_is_lost(drive):
+    from ldem.markdown import load_loss_words
+    p = {name: row["default"] for name, row in TABLE.items()} | {"tail_drive": drive, "loss_speedup": 20}
+    words = load_loss_words([p])
+    if drive == "constant_velocity":
+        assert "speeds up" not in words and f"{p['drive_velocity']:g} m/s" in words, words
+    else:
+        assert "speeds up 20 times" in words, words
+    assert ("adaptively" in words) == (drive == "adaptive"), words
