@@ -58,4 +58,12 @@ void refuseAllBrittle(std::int64_t clamped, std::int64_t bars, const Material& m
                                 "1 / c_a)");
 }
 
+double chosenTimeStep(const RunParams& r, double limit, double stepFactor, double omegaMax) {
+    if (r.dt <= limit) return r.dt > 0 ? r.dt : limit;
+    std::ostringstream msg;
+    msg << "time step " << r.dt << " s is above the stability limit " << limit << " s (" << r.dtSafety
+        << " x 2/omega_max x " << stepFactor << " for zeta_high, omega_max = " << omegaMax << " rad/s)";
+    throw std::invalid_argument(msg.str());
+}
+
 }  // namespace ldem

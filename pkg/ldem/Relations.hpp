@@ -31,6 +31,10 @@ void checkRelations(const Material& m, const LoadingParams& l, const RunParams& 
 // below its brittle bound (clamped of bars): no bar left to soften, no model of concrete.
 void refuseAllBrittle(std::int64_t clamped, std::int64_t bars, const Material& m, double L0);
 
+// The time step: r.dt, refused above the stability limit (its message names the limit's factors:
+// dt_safety, the dampings' stepFactor, omega_max [rad/s]), or the limit itself when r.dt is 0.
+double chosenTimeStep(const RunParams& r, double limit, double stepFactor, double omegaMax);
+
 // A warning ("" if none) when the bars of the mean G_f are perfectly brittle:
 // a share of the bars by construction, not by the random draw alone.
 std::string brittleWarning(const Material& m, double L0);

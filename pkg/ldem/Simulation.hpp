@@ -9,50 +9,26 @@
 #include <cstdint>
 #include <functional>
 #include <map>
-#include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "ldem/Field3.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
+#include "ldem/LoadCell.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
 #include "ldem/Modal.hpp"
 #include "ldem/RandomField.hpp"
 #include "ldem/RunParams.hpp"
+#include "ldem/RunProgress.hpp"
 #include "ldem/Specimen.hpp"
+#include "ldem/Weight.hpp"
 #include "ldem/dynamics/Parts.hpp"
 #include "ldem/laws/Registry.hpp"
 
 namespace ldem {
-
-// What run() has found so far, kept so that a run can stop at a record (a checkpoint) and go on bit-identically.
-struct RunProgress {
-    RunSummary summary;
-    double maxEnergy = 0, maxResidual = 0;  // the largest of W and K + E + F + D, and of |W - (K + E + F + D)|
-    bool started = false;
-    bool pendingAdvance = false;       // state n is recorded: the run goes on with its advance()
-};
-
-// The whole state of a run at a record: with the specimen's parameters, enough to continue it.
-struct Checkpoint {
-    Field3 u, v, f;
-    std::vector<std::pair<std::string, std::vector<double>>> bars;  // the law's per-bar state, by name
-    std::vector<std::uint8_t> softening;                             // the law's softening rows
-    double time = 0, externalWork = 0, dampingWork = 0;
-    std::int64_t step = 0;
-    RunProgress progress;
-    PartStates parts;  // each dynamic part's, by role and name (Parts::states)
-};
-
-// Thrown when the integration blows up (NaN, or energy created from nothing).
-class InstabilityError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 class Simulation {
 public:
@@ -62,13 +38,12 @@ public:
     Simulation& operator=(const Simulation&) = delete;
 
     // The time-step loop: records every recordEvery steps, calls observer (false: stop) and stops
-    // where a stop rule says. Separation is tested at most every kSeparationCheckSteps steps.
+    // where a stop rule says.
     RunSummary run(const std::function<bool(const CurvePoint&)>& observer = {});
-    static constexpr std::int64_t kSeparationCheckSteps = SeparationStop::checkSteps;
 
     void step();  // one step, forces at x(n) then x(n+1), in one pass over the lattice
     // The same step in two halves, to measure() state n in between: bit-identical results.
-    void computeForces();
+    void computeForces() { layered([](int) {}); }
     CurvePoint measure() const;
     void advance();
 
@@ -81,7 +56,9 @@ public:
     std::vector<std::string> partNames() const { return parts_.names(); }
 
     // Sets dt without the stability check: for tests of the instability detector and the stability limit.
-    void forceTimeStep(double dt) { dt_ = dt, cd_ = nodeRule(); }
+    void forceTimeStep(double dt) {
+        dt_ = dt, weight_ = RisingWeight(run_.gravity, drive().rampTime, dt), cd_ = nodeRule();
+    }
 
     const Lattice& lattice() const { return lat_; }
     const Prescribed& prescribed() const { return pre_; }
@@ -101,7 +78,9 @@ public:
     const RunParams& runParams() const { return run_; }
     const Frequencies& frequencies() const { return freq_; }
     double dt() const { return dt_; }
-    double stableTimeStepLimit() const;  // dtSafety x 2 / omega_max x the dampings' factor (zeta_high)
+    double stableTimeStepLimit() const {  // dtSafety x 2 / omega_max x the dampings' factor (zeta_high)
+        return run_.dtSafety * stableTimeStep(freq_.omegaMax) * parts_.stepFactor();
+    }
     double dampingCoefficient() const { return parts_.dampingCoefficient(); }
     double supportStress() const;  // reactions of the support group / area, state n [Pa]
     bool facesJoined() const;      // some chain of intact bars joins the support and loaded groups
@@ -122,19 +101,17 @@ public:
 
 private:
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
-    double probe(const Probe& q) const;  // its reading at the current state [m]
     // The layered pass with the law's rows and the dampings' bar forces; afterLayer(m) as in layeredForces.
     template <class AfterLayer>
     void layered(AfterLayer afterLayer) {
         std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, law.rows(), afterLayer, parts_.barPass(v_)); },
                    law_);
     }
-    double advanceNodes(int layer);
+    double advanceNodes(int m) {  // the owned nodes of layer m; the halo's are moved by their owner
+        return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
+    }
     CentralDifference nodeRule();
-    double weightAt(std::int64_t n) const;
-    void weighNextStep();
-    // Sum over the nodes of a group of a force component along the measured direction.
-    double groupForce(const std::vector<std::int32_t>& nodes) const;
+    void weighNextStep() { externalWork_ -= weight_.stepTo(step_, lat_, pre_.mask, u_, v_), cd_.gz = weight_.gz(); }
     void finishStep();  // damping and external work, prescribed DOFs, clock
 
     Material mat_;
@@ -158,11 +135,8 @@ private:
     std::vector<std::int32_t> preSlot_, supportSlot_, loadedSlot_;  // owned layer (- ownBegin) of each prescribed DOF's node, support and loaded node; -1 if not owned
     std::vector<double> stepPartials_;  // finishStep's per-layer sums, kept between steps
     double externalWork_ = 0, dampingWork_ = 0;
-    double gz_ = 0, weightRise_ = 0;  // the weight's g_z in the last step; the time it rises over [s]
-    // The load cells: sums of the support's and the loaded group's stresses over
-    // the states since the last record, and how many (measure()).
-    double cellSupport_ = 0, cellLoaded_ = 0;
-    int cellStates_ = 0;
+    RisingWeight weight_;
+    LoadCell supportCell_, loadedCell_;  // the support's and the loaded group's stresses (measure())
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
     int recordEvery_ = 1;
     int threads_ = 1;
