@@ -29,7 +29,7 @@ struct CentralDifference {
     double dt, Df, a, b;
     Field3* mean = nullptr;  // vbar per node, or none (the damping on absolute velocity)
     double filter = 0;       // dt/tau
-    double gz = 0;           // the body force per unit mass along z [m/s^2]: -g under gravity (Simulation.cpp)
+    double gz = 0;           // the body force per unit mass along z [m/s^2]: -g under gravity (Weight.hpp)
     CentralDifference(double dt_, double Df_)
         : dt(dt_), Df(Df_), a((1 - 0.5 * Df_ * dt_) / (1 + 0.5 * Df_ * dt_)), b(dt_ / (1 + 0.5 * Df_ * dt_)) {}
 };
@@ -53,7 +53,7 @@ double advanceLayer(const Lattice& lat, int m, const CentralDifference& cd, cons
 // sum m g_z (x(n) + x(n-1))/2 = sum m g_z (u - dt v/2) over the free z DOFs,
 // u = x(n), v = v(n-1/2): the work a constant weight g_z did from rest (its
 // share of f (x(n+1) - x(n-1))/2 telescopes). While the weight changes,
-// Simulation::weighNextStep adds the rest of the sum by parts.
+// RisingWeight::stepTo (Weight.hpp) adds the rest of the sum by parts.
 double weightWork(const Lattice& lat, const std::vector<std::uint8_t>& mask, double gz, double dt, const Field3& u,
                   const Field3& v);
 

@@ -1,19 +1,27 @@
-// The loading of the cube tests (LDEM_SPEC section 6): its parameters. The
-// drives are dynamic parts (dynamics/Registry.hpp): a displacement U(t) that
-// grows smoothly from rest (dynamics/ConstantRateDrive.hpp; the specimen says
-// which DOFs follow it and with which weights, Specimen.hpp), after the load
-// loss fixed or adaptive (tail_drive: dynamics/AdaptiveDrive.hpp), or a servo
-// that holds an opening to a program (dynamics/ServoDrive.hpp).
+// The loading of the cube tests (LDEM_SPEC section 6): its parameters, the
+// registered drives' among them (dynamics/Registry.hpp). A drive moves the
+// specimen's prescribed DOFs (Specimen.hpp) by U(t), from rest.
 #pragma once
 #include "ldem/Parameters.hpp"
+#include "ldem/dynamics/Registry.hpp"
+
+// The loading: its own parameters, the drive's program and choice, then every drive's list in registry order.
+#define LDEM_LOADING_PARAMETERS(X)                                                                           \
+    X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),          \
+      "upper-face displacement: uniform or triangular")                                                      \
+    LDEM_DRIVE_PARAMETERS(X)                                                                                 \
+    X(bool, topLateralFree, "top_lateral", true, "", Domain::choices({"fixed", "free"}),                     \
+      "lateral DOFs of the upper nodes: free or fixed")                                                      \
+    X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),              \
+      "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                           \
+    X(DriveId, tailDrive, "tail_drive", driveNamed("adaptive"), "", Domain::choices(driveNames()), driveHelp()) \
+    LDEM_SPEEDUP_PARAMETERS(X)                                                                               \
+    LDEM_DRIVES(LDEM_PART_LIST, X)
 
 namespace ldem {
 
 enum class LoadShape { Uniform, Triangular };
-enum class TailDrive { Fixed, Adaptive };
 
-// LDEM_LOADING_PARAMETERS (Parameters.hpp): load shape, strain rate, smooth
-// start, lateral DOFs of the faces, speed-up after load loss.
 struct LoadingParams {
     LDEM_LOADING_PARAMETERS(LDEM_DECLARE_MEMBER)
     void validate() const;

@@ -1,6 +1,7 @@
 #include "ldem/Modal.hpp"
 
 #include <cmath>
+#include <sstream>
 #include <stdexcept>
 
 #include "ldem/InternalForces.hpp"
@@ -147,6 +148,15 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         betaPrev = b;
     }
     return out;
+}
+
+void refuseMechanism(const Frequencies& f) {
+    if (f.omega1 > 1e-6 * f.omegaMax) return;
+    std::ostringstream msg;
+    msg << "the constraints leave a mechanism: omega_1 = " << f.omega1 << " rad/s (omega_max = " << f.omegaMax
+        << " rad/s); e.g. one module with a laterally free upper face turns about the "
+        << "vertical axis: use at least 2 modules a side or hold the upper face laterally";
+    throw std::invalid_argument(msg.str());
 }
 
 }  // namespace ldem

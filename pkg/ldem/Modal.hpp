@@ -22,4 +22,9 @@ struct Frequencies {
 Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_t>& mask,
                                int maxIterations = 20000, double tolerance = 1e-4);
 
+// Throws std::invalid_argument when the constraints leave a mechanism (a motion
+// that stretches no bar, omega_1 = 0): no damping (D_f = 2 zeta omega_1), an
+// infinite smooth start, NaN at once.
+void refuseMechanism(const Frequencies& f);
+
 }  // namespace ldem

@@ -46,19 +46,16 @@ struct ParamInfo {
 const std::vector<ParamInfo>& cubeTestParameters();
 
 // The cube's own defaults over the table's (which are every specimen's): its
-// drive paced near the peak and while a crack runs (dynamics/CrackPace.hpp).
-// A constant rate feeds the crack that runs through a large cube at its peak:
-// the 0.48 m cube fails the quarter-rate test without it, passes with it; a
-// beam at its own period's rate passes without it, and would take 5.5 times
-// the steps with it (results/dynamics/criteria.md).
+// drive paced near the peak and while a crack runs (dynamics/CrackPace.hpp): a
+// constant rate feeds the crack that runs through a large cube at its peak, and
+// a beam at its own period's rate needs no pace (results/dynamics/README.md).
 const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults();
 // A cube test at its defaults: the table's, then cubeOwnDefaults().
 CubeTestParams cubeTestDefaults();
 // A specimen's own defaults over the table's, for one described in a file
 // (py/ldem/specimen.py): rule (c) sets its rate from its own fundamental
 // period, eps_p in kSpecimenRatePeriods periods (dynamics/QuasiStatic.hpp), where the
-// table's strain_rate, a cube's, is a guess (a 1 m beam: 1.7 periods, a
-// compression cube: 35). A file that gives strain_rate is driven at it.
+// table's strain_rate, a cube's, is a guess. A file that gives strain_rate is driven at it.
 const std::vector<std::pair<std::string, ParamValue>>& specimenOwnDefaults();
 
 // By name; an unknown name, a wrong type or an unknown choice throws

@@ -8,7 +8,8 @@
 // (LDEM_SPEC section 6, Table 2).
 //
 // Adding a parameter: one line in a list below, then its use. A dynamic part
-// (pkg/ldem/dynamics/) has a list of its own, spliced into its group's list.
+// (pkg/ldem/dynamics/) declares its list in its header; the registry splices it
+// into its group's (LDEM_LOADING_PARAMETERS, LDEM_RUN_PARAMETERS).
 //
 // X(type, member, "name", default, "unit", domain, "help")
 #pragma once
@@ -85,141 +86,8 @@
       "drive velocity factor once the load is lost; tail_drive adaptive: the most its floor (the factor it "\
       "returns to while bars soften) may be")
 
-// The adaptive tail (dynamics/AdaptiveDrive.hpp).
-#define LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                    \
-    X(double, tailMaxSpeedup, "tail_max_speedup", 2000.0, "", Domain::atLeast(1),                            \
-      "tail_drive adaptive: the largest velocity factor (over strain_rate) once the load is lost")           \
-    X(double, tailLoad, "tail_load", 0.005, "", Domain::open(0, 1),                                          \
-      "tail_drive adaptive: the support's stress, over the peak, at which the drive is back at its floor "   \
-      "(the chains are taut); below, at most floor x tail_load / (support stress / peak)")                   \
-    X(double, tailDrag, "tail_drag", 0.03, "", Domain::open(0, 1),                                           \
-      "tail_drive adaptive: the largest stress, over the peak, that the drive's drag and inertia may put on "\
-      "the part of the specimen that hangs from it, rho H (a + D_f v) with H the height, at every instant "  \
-      "from the load loss on")                                                                               \
-    X(double, tailStep, "tail_step", 1.1, "", Domain::openClosed(1, 2),                                      \
-      "tail_drive adaptive: the velocity factor changes by at most this ratio per record, ramped linearly "  \
-      "over the record's steps")                                                                             \
-    X(double, crackPace, "crack_pace", 1.0, "", Domain::openClosed(0, 1),                                    \
-      "tail_drive adaptive: the drive's velocity factor (over strain_rate) before the load loss while the "  \
-      "lattice moves by itself (crack_kinetic; 1: never slowed, a file's default; 0.0625: the cube's, "       \
-      "cubeOwnDefaults in ParameterTable.hpp; dynamics/CrackPace.hpp)")                                     \
-    X(double, crackKinetic, "crack_kinetic", 1e-3, "", Domain::open(0, 1),                                   \
-      "tail_drive adaptive: the kinetic energy less the drive's quasi-static motion, over the external "     \
-      "work, above which the drive slows to crack_pace (a tenth of the quasi-static flag's 1 % at the peak)") \
-    X(double, crackSecant, "crack_secant", 0.0, "", Domain::closed(0, 1),                                    \
-      "tail_drive adaptive: the drive also slows to crack_pace near the peak, while the curve's secant "      \
-      "stress / strain is below crack_secant x its elastic value and the stress above crack_band x the "     \
-      "peak so far (0: off, a file's default; 0.9: the cube's; dynamics/CrackPace.hpp)")                     \
-    X(double, crackBand, "crack_band", 0.5, "", Domain::open(0, 1),                                          \
-      "tail_drive adaptive: crack_secant's band: the stress, over the peak so far, below which the curve "    \
-      "is past its snap and the drive is no longer slowed for its secant")
-
-// Opening control (dynamics/ServoDrive.hpp).
-#define LDEM_SERVO_PARAMETERS(X)                                                                             \
-    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                   \
-      "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
-
-// The loading: the dynamic parts' lists above, in the table's order, and the choice of the tail drive.
-#define LDEM_LOADING_PARAMETERS(X)                                                                           \
-    X(LoadShape, shape, "load", LoadShape::Uniform, "", Domain::choices({"uniform", "triangular"}),          \
-      "upper-face displacement: uniform or triangular")                                                      \
-    LDEM_DRIVE_PARAMETERS(X)                                                                                 \
-    X(bool, topLateralFree, "top_lateral", true, "", Domain::choices({"fixed", "free"}),                     \
-      "lateral DOFs of the upper nodes: free or fixed")                                                      \
-    X(bool, bottomLateralFree, "bottom_lateral", false, "", Domain::choices({"fixed", "free"}),              \
-      "lateral DOFs of the lower nodes: fixed, or free (rollers)")                                           \
-    X(TailDrive, tailDrive, "tail_drive", TailDrive::Adaptive, "", Domain::choices({"fixed", "adaptive"}),   \
-      "the drive once the load is lost: fixed (loss_speedup times as fast, ramped in once), or adaptive "    \
-      "(ramped in to loss_speedup the same way, then faster while no bar softens and the chains are slack, " \
-      "within bounds of drag and inertia: tail_max_speedup, tail_load, tail_drag, tail_step)")               \
-    LDEM_SPEEDUP_PARAMETERS(X)                                                                               \
-    LDEM_ADAPTIVE_DRIVE_PARAMETERS(X)                                                                        \
-    LDEM_SERVO_PARAMETERS(X)
-
-// Mass-proportional damping (dynamics/MassDamping.hpp).
-#define LDEM_MASS_DAMPING_PARAMETERS(X)                                                                      \
-    X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                 \
-      "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
-      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")\
-    X(double, dampingOmega, "damping_omega", 0.0, "rad/s", Domain::atLeast(0),                              \
-      "the circular frequency zeta is stated on: D_f = 2 zeta damping_omega (0: omega_1, the fundamental "    \
-      "mode; another mode's, or one D_f for specimens of every size)")                                       \
-    X(bool, tailDampingRelative, "tail_damping", false, "", Domain::choices({"absolute", "relative"}),        \
-      "the mass-proportional damping from the load loss on: on each node's absolute velocity, or relative "  \
-      "to its mean velocity (low-passed over damping_filter_periods): a part that moves with the drive is "  \
-      "then not dragged, a vibration at omega_1 damped by zeta x 0.994 (2 periods)")                          \
-    X(double, dampingFilterPeriods, "damping_filter_periods", 2.0, "", Domain::closed(0.5, 100),             \
-      "tail_damping relative: the time constant of each node's mean velocity, in fundamental periods "       \
-      "2 pi/omega_1; a vibration at omega keeps the ratio (omega tau)^2 / (1 + (omega tau)^2) of its damping")
-
-// Dashpots in the bars that have left their elastic branch (dynamics/BarDashpots.hpp).
-#define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
-    X(double, zetaHigh, "zeta_high", 0.2, "", Domain::closedOpen(0, 1),                                      \
-      "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
-      "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
-      "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
-      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
-
-// The converged stop (dynamics/ConvergedStop.hpp).
-#define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
-    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                             \
-      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "\
-      "the mean strain since load loss, with the load still below stop_fraction x peak")
-
-// The load-loss stop (dynamics/LoadLossStop.hpp).
-#define LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                    \
-    X(double, lossStopStrainRatio, "loss_stop_strain_ratio", 10.0, "", Domain::atLeast(0),                   \
-      "stop_at load_loss: the run goes on at least to this multiple of the mean strain at the peak, so that " \
-      "the softening branch and the crack are in the record")
-
-// The past-the-peak stop (dynamics/PastPeakStop.hpp).
-#define LDEM_PAST_PEAK_STOP_PARAMETERS(X)                                                                    \
-    X(double, peakStopStrainRatio, "peak_stop_strain_ratio", 10.0, "", Domain::atLeast(1),                   \
-      "stop_at past_peak: the run ends at this multiple of the mean strain at the peak, lost load or not")
-
-// The final-strain stop (dynamics/FinalStrainStop.hpp).
-#define LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                 \
-    X(double, finalStrain, "final_strain", 0.5, "", Domain::positive(),                                      \
-      "stop at this mean strain if the event has not come; one before the first record is refused (exit 2): "\
-      "it can never reach the peak")
-
-// The load-loss detector (dynamics/LoadLoss.hpp).
-#define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \
-    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                             \
-      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")\
-    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                     \
-      "averaging time of the load-loss test (0: two fundamental periods)")
-
-// The run: the dynamic parts' lists above, in the table's order, and the choice of the stop.
-#define LDEM_RUN_PARAMETERS(X)                                                                               \
-    X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")   \
-    X(double, gravity, "gravity", 0.0, "m/s^2", Domain::closed(0, 100),                                      \
-      "the specimen's weight: a body force m g along -z on every free DOF, rising over the drive's smooth "    \
-      "start (9.81: a beam lying on its supports); its work counts as external work")                        \
-    LDEM_MASS_DAMPING_PARAMETERS(X)                                                                          \
-    LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                           \
-    X(StopAt, stopAt, "stop_at", StopAt::Separation, "",                                                     \
-      Domain::choices({"separation", "load_loss", "converged", "past_peak"}),                                \
-      "the event that ends the run: separation (no chain of intact bars joins the faces), load_loss, "       \
-      "converged: separation or, for a specimen that hinges (triangular), U no longer growing after load "  \
-      "loss, or past_peak: peak_stop_strain_ratio x the strain at the peak")                                 \
-    LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                        \
-    LDEM_PAST_PEAK_STOP_PARAMETERS(X)                                                                        \
-    LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                        \
-    LDEM_FINAL_STRAIN_STOP_PARAMETERS(X)                                                                     \
-    X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \
-    X(double, dtSafety, "dt_safety", 0.8, "", Domain::openClosed(0, 1),                                      \
-      "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high); without "\
-      "the dashpots (zeta_high 0) keep it at 0.4: above, closing cracks pump energy into the highest modes")  \
-    LDEM_LOAD_LOSS_PARAMETERS(X)                                                                             \
-    X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                             \
-      "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")            \
-    X(int, recordEvery, "record_every", 0, "steps", Domain::atLeast(0),                                      \
-      "steps between curve rows (0: one per eps_p/50 of mean strain at the initial rate)")                   \
-    X(int, threads, "threads", 0, "", Domain::atLeast(0),                                                   \
-      "OpenMP threads (0: OMP_NUM_THREADS if set, else one per 50,000 bars of the lattice, at most the cores " \
-      "free to this process: those it may run on less those busy over 0.1 s; at least one)")
-
+// None: the list of a part without parameters.
+#define LDEM_NO_PARAMETERS(X)
 // A struct member with its default.
 #define LDEM_DECLARE_MEMBER(type, member, name, def, unit, domain, help) type member = def;
 // Its check against its domain, inside the struct's validate().
@@ -267,6 +135,18 @@ std::string formatWhole(double x);   // a whole number as all its digits: 2^70 i
 // whose value is a BarLawId, the law's index in the registry.
 enum class BarLawId : std::uint8_t {};
 std::vector<std::string> barLawNames();
+
+// The drives and the stop rules a run may choose by name (dynamics/Registry.hpp): the
+// choices of tail_drive and stop_at, whose values are the index of the name; the
+// parameter's help from each choice's doc.
+enum class DriveId : std::uint8_t {};
+enum class StopId : std::uint8_t {};
+std::vector<std::string> driveNames();
+std::vector<std::string> stopNames();
+std::string driveHelp();
+std::string stopHelp();
+DriveId driveNamed(const std::string& name);
+StopId stopNamed(const std::string& name);
 
 template <class T>
 void checkParameter(const char* name, const char* unit, const T& value, const Domain& d) {

@@ -49,4 +49,21 @@ std::string brittleWarning(const Material& m, double L0) {
     return msg.str();
 }
 
+void refuseAllBrittle(std::int64_t clamped, std::int64_t bars, const Material& m, double L0) {
+    if (clamped < bars) return;
+    throw std::invalid_argument("every bar is perfectly brittle: all " + std::to_string(bars) +
+                                " drew a G_f below E A eps_p^2 L / (2 A_f) (" +
+                                formatNumber(brittleFractureEnergy(m, L0, false)) + " N/m for a normal bar), with "
+                                "Gf_mean " + formatNumber(m.GfMean) + " N/m: raise Gf_mean or c_a (the bound goes as "
+                                "1 / c_a)");
+}
+
+double chosenTimeStep(const RunParams& r, double limit, double stepFactor, double omegaMax) {
+    if (r.dt <= limit) return r.dt > 0 ? r.dt : limit;
+    std::ostringstream msg;
+    msg << "time step " << r.dt << " s is above the stability limit " << limit << " s (" << r.dtSafety
+        << " x 2/omega_max x " << stepFactor << " for zeta_high, omega_max = " << omegaMax << " rad/s)";
+    throw std::invalid_argument(msg.str());
+}
+
 }  // namespace ldem

@@ -3,6 +3,7 @@
 // before anything is allocated: CubeTestParams::validate, a specimen file's
 // parameters once its L0 is known, and the Simulation's constructor.
 #pragma once
+#include <cstdint>
 #include <string>
 
 #include "ldem/Loading.hpp"
@@ -25,6 +26,14 @@ double meanLimitStrain(const Material& m, double L0);
 // - the smooth start outlasts eps_p / strain_rate: its mean strain at the end, strain_rate ramp_time / 2,
 //   would be above eps_p / 2, so that the bars could crack during the ramp.
 void checkRelations(const Material& m, const LoadingParams& l, const RunParams& r, double L0);
+
+// Throws std::invalid_argument when every one of the lattice's bars drew a G_f
+// below its brittle bound (clamped of bars): no bar left to soften, no model of concrete.
+void refuseAllBrittle(std::int64_t clamped, std::int64_t bars, const Material& m, double L0);
+
+// The time step: r.dt, refused above the stability limit (its message names the limit's factors:
+// dt_safety, the dampings' stepFactor, omega_max [rad/s]), or the limit itself when r.dt is 0.
+double chosenTimeStep(const RunParams& r, double limit, double stepFactor, double omegaMax);
 
 // A warning ("" if none) when the bars of the mean G_f are perfectly brittle:
 // a share of the bars by construction, not by the random draw alone.

@@ -7,6 +7,26 @@
 
 namespace ldem {
 
+void Prescribed::follow(double U, double Ustart, double dt, Field3& u, Field3& v) const {
+    for (std::size_t k = 0; k < node.size(); ++k)
+        u[dim[k]][node[k]] = weight[k] * U, v[dim[k]][node[k]] = weight[k] * (U - Ustart) / dt;
+}
+
+// The sum of +u[b] and -u[a] is exact in either order.
+double probeReading(const Lattice& lat, const Field3& u, const Probe& q) {
+    std::int32_t nodes[2];
+    double values[2];
+    std::size_t n = 0;
+    if (q.b >= 0) nodes[n] = q.b, values[n++] = u[q.dim][q.b];
+    if (q.a >= 0) nodes[n] = q.a, values[n++] = -u[q.dim][q.a];
+    return listSum(lat, n, [&](std::size_t k) { return nodes[k]; }, [&](std::size_t k) { return values[k]; });
+}
+
+double groupSum(const Lattice& lat, const std::vector<double>& f, const std::vector<std::int32_t>& nodes) {
+    return listSum(lat, nodes.size(), [&](std::size_t k) { return nodes[k]; },
+                   [&](std::size_t k) { return f[nodes[k]]; });
+}
+
 void Prescribed::add(std::int32_t n, int d, double w) {
     mask[n] |= std::uint8_t(1u << d);
     node.push_back(n), dim.push_back(std::uint8_t(d)), weight.push_back(w);

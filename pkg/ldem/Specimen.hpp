@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
@@ -24,6 +25,8 @@ struct Prescribed {
     std::vector<std::uint8_t> dim;
     std::vector<double> weight;
     void add(std::int32_t n, int d, double w);
+    // Each DOF at weight x U, its velocity weight x (U - Ustart) / dt: the drive's over the step from Ustart.
+    void follow(double U, double Ustart, double dt, Field3& u, Field3& v) const;
 };
 
 // A displacement read at every record: u_dim[b] - u_dim[a] (a < 0: u_dim[b] alone),
@@ -52,6 +55,12 @@ struct Measures {
     // The specimen is split when no chain of intact bars joins support and loaded.
     double sense() const { return meanDriveWeight < 0 ? -1.0 : 1.0; }
 };
+
+// The readings of the measures, summed over the ranks that own the nodes (a
+// slab's node held elsewhere is -1, Slab.hpp): a probe's u_dim[b] - u_dim[a],
+// and a force component summed over a group's nodes.
+double probeReading(const Lattice& lat, const Field3& u, const Probe& q);
+double groupSum(const Lattice& lat, const std::vector<double>& f, const std::vector<std::int32_t>& nodes);
 
 struct Specimen {
     Lattice lattice;

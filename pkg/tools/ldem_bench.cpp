@@ -28,6 +28,7 @@
 #include "ldem/Parallel.hpp"
 #include "ldem/Simulation.hpp"
 #include "ldem/Slab.hpp"
+#include "ldem/dynamics/SeparationStop.hpp"
 
 namespace {
 double seconds(std::chrono::steady_clock::time_point t0) {
@@ -149,7 +150,7 @@ static int bench(int argc, char** argv, int& modules) {
 
     ldem::RunParams run;
     run.threads = threads;
-    run.stopAt = ldem::StopAt::LoadLoss;  // the damaged case's run (the elastic timing calls step() alone)
+    run.stopAt = ldem::stopNamed("load_loss");  // the damaged case's run (the elastic timing calls step() alone)
     run.lossStopStrainRatio = 0;  // at the load loss itself, as before that stop had a floor
     const ldem::Comm& comm = ldem::Comm::world();
     const auto t0 = std::chrono::steady_clock::now();
@@ -188,7 +189,7 @@ static int bench(int argc, char** argv, int& modules) {
         }
         forces.push_back(tf / 10), advance.push_back(ta / 10);
         // One separation test (union-find over the intact bars), the cost that
-        // run() adds once per kSeparationCheckSteps steps after the peak.
+        // run() adds once per SeparationStop::checkSteps steps after the peak.
         const auto t = std::chrono::steady_clock::now();
         volatile bool joined = sim.facesJoined();
         (void)joined;
@@ -209,7 +210,7 @@ static int bench(int argc, char** argv, int& modules) {
             "\"peak_rss_bytes\": %.0f, \"bytes_per_bar\": %.2f, \"bytes_sent_per_rank_step\": %.0f%s}\n",
             shape.c_str(), modules, (long long)bars, (long long)nodes, steps, repeats, comm.size(), sim.threads(),
             step / bars * 1e9, force / bars * 1e9, adv / bars * 1e9,
-            sep / (ldem::Simulation::kSeparationCheckSteps * step), setup, rss, rss * comm.size() / bars, sent,
+            sep / (ldem::SeparationStop::checkSteps * step), setup, rss, rss * comm.size() / bars, sent,
             damagedFields.c_str());
     ldem::mpiFinalize();
     return 0;

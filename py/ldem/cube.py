@@ -90,8 +90,6 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
     if sim.steps > 0 and not sim.resumable:  # the end of that run: a second run would start from there
         raise ValueError(f"this specimen has already run ({sim.steps} steps): build a new one with "
                          "test.simulation()")
-    if sim.steps == 0:
-        refuse_drive_jump(test, sim)
     rows = list(previous_rows)
 
     def observe(p):
@@ -113,18 +111,12 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
 
 # Quasi-static loading (docs/cube.md, Outputs): the guards are the core's
 # (pkg/ldem/dynamics/QuasiStatic.hpp), so that every run gets them: a drive
-# that moves by eps_p or more in one step is refused (Simulation.run refuses it
-# too; this says it before any file is opened), and a run whose kinetic energy
-# at the peak is above KINETIC_AT_PEAK_LIMIT of the work is flagged.
+# that moves by eps_p or more in one step is refused when the specimen is built,
+# and a run whose kinetic energy at the peak is above KINETIC_AT_PEAK_LIMIT of
+# the work is flagged.
 KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
 # Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer fundamental periods is warned.
 RATE_PERIODS = _core.RATE_PERIODS
-
-
-def refuse_drive_jump(test, sim) -> None:
-    """Refuses sim's drive (its strain_rate or rate_periods') too fast (eps_p in a step) or slow (1e6 steps)."""
-    _core.refuse_drive_jump(sim.strain_rate, sim.dt, test.eps_p)
-    _core.refuse_drive_crawl(sim.strain_rate, sim.dt, test.eps_p)
 
 
 def quasi_static(summary) -> dict:

@@ -39,18 +39,24 @@ def pct(a, b) -> str:
 
 
 def tail_drive_words(p: dict) -> str:
-    """The drive past its ramp after load loss, for the report's table (runs
+    """What the drive does once the load is lost, for the report's table (runs
     before tail_drive was declared ran the fixed drive)."""
-    if p.get("tail_drive", "fixed") == "fixed":
-        return ""
+    drive = p.get("tail_drive", "fixed")
+    if drive == "constant_velocity":
+        return f"the drive keeps its velocity, {p['drive_velocity']:g} m/s (tail_drive constant_velocity)"
+    speedup = f"the drive speeds up {p.get('loss_speedup', 1):g} times"
+    if drive == "fixed":
+        return speedup
+    if drive != "adaptive":
+        raise ValueError(f"the report has no words for tail_drive {drive!r}")
     pace = p.get("crack_pace", 1.0)  # runs before the pace was declared ran without it
     secant = p.get("crack_secant", 0.0)
     near = (f" or near the peak (secant below {secant:g} of the elastic, stress above {p['crack_band']:g} of the peak)"
             if secant > 0 else "")
     before = (f"; before the load loss at {pace:g} of the rate while cracks run and K/W > {p['crack_kinetic']:g}"
               f"{near}" if pace < 1 else "")
-    return (f", then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains are "
-            f"slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}"
+    return (f"{speedup}, then adaptively up to {p['tail_max_speedup']:g} times while no bar softens and the chains "
+            f"are slack (tail_load {p['tail_load']:g}, tail_drag {p['tail_drag']:g}, tail_step {p['tail_step']:g}"
             f"{before}; docs/cube.md)")
 
 
@@ -81,8 +87,8 @@ def load_loss_words(ps) -> str:
     """The report's load-loss rule for the cases (their parameters ps; the first one's window and drive)."""
     p = ps[0]
     window = f"{p['split_window']:g} s" if p.get("split_window") else "two fundamental periods"
-    return (f"bars broke and the stress averaged over {window} < {loss_fraction_words(ps)}; then the drive speeds "
-            f"up {p.get('loss_speedup', 1):g} times" + tail_drive_words(p))
+    return (f"bars broke and the stress averaged over {window} < {loss_fraction_words(ps)}; then "
+            + tail_drive_words(p))
 
 
 def cost_section(case_rows) -> list:

@@ -11,7 +11,7 @@ import os
 from typing import Optional, Sequence
 
 from . import io, parallel
-from .cube import CubeResult, CubeTest, refuse_drive_jump
+from .cube import CubeResult, CubeTest
 from .progress import ProgressBar
 from .signals import SignalsAtRecords
 
@@ -64,9 +64,7 @@ def run_cube(test: CubeTest, out: Optional[str] = None, progress: Optional[bool]
         raise ValueError("checkpoints need an output folder")
     if (restart or checkpoints or final_state) and parallel.ranks() > 1:
         raise ValueError("checkpoints and restarts of a run split over MPI ranks are not supported")
-    sim = _set_up(test, out, simulation)
-    if sim.steps == 0:
-        refuse_drive_jump(test, sim)  # as test.run would, before any file is opened
+    sim = _set_up(test, out, simulation)  # refuses a drive too fast or too slow before any file is opened
     previous, wall_before = [], 0.0
     if restart:
         previous, wall_before = io.restore(test, sim, out, extend)

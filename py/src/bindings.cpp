@@ -277,10 +277,6 @@ PYBIND11_MODULE(_core, m) {
     m.attr("RATE_PERIODS") = kRatePeriods;
     m.def("drive_step", &driveStep, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
           "the drive's displacement in one step over eps_p x the gauge length");
-    m.def("refuse_drive_jump", &refuseDriveJump, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
-          "ValueError when the drive moves by eps_p or more in one step (Simulation.run refuses such a run)");
-    m.def("refuse_drive_crawl", &refuseDriveCrawl, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
-          "ValueError when the drive takes more than a million steps to strain eps_p (Simulation.run refuses it too)");
     m.def("brittle_warning", &brittleWarning, py::arg("material"), py::arg("L0"),
           "a warning ('' if none) when the bars of the mean G_f are perfectly brittle by construction");
     m.def("brittle_fracture_energy", &brittleFractureEnergy, py::arg("material"), py::arg("L0"), py::arg("diagonal"),
@@ -370,6 +366,28 @@ PYBIND11_MODULE(_core, m) {
 
     // The laws' names, in registry order (laws/Registry.hpp): the choices of the `law` parameter.
     m.attr("bar_laws") = barLawNames();
+    // The dynamic parts' registry (pkg/ldem/dynamics/Registry.hpp): each part's family, name, doc and parameters.
+    {
+        py::list parts;
+        auto row = [&](const char* family, const char* name, const char* doc, bool choice,
+                       std::vector<std::string> params) {
+            py::dict d;
+            d["family"] = family, d["name"] = name, d["doc"] = doc, d["choice"] = choice, d["parameters"] = params;
+            parts.append(d);
+        };
+#define LDEM_PARAM_NAME(type, member, name, def, unit, domain, help) name,
+#define LDEM_DRIVE_ROW(Type, LIST, X) row("drive", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
+#define LDEM_STOP_ROW(Type, LIST, X) row("stop", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
+#define LDEM_DAMPING_ROW(Type, LIST, X) row("damping", Type::name, "", false, {LIST(LDEM_PARAM_NAME)});
+        LDEM_DRIVES(LDEM_DRIVE_ROW, _)
+        LDEM_DAMPINGS(LDEM_DAMPING_ROW, _)
+        LDEM_STOPS(LDEM_STOP_ROW, _)
+#undef LDEM_PARAM_NAME
+#undef LDEM_DRIVE_ROW
+#undef LDEM_STOP_ROW
+#undef LDEM_DAMPING_ROW
+        m.attr("dynamic_parts") = parts;
+    }
     // Every law's one-bar functions (pkg/ldem/laws/), for tests and for anyone who wants to plot them.
     forEachLawType([&](auto* law) {
         std::remove_pointer_t<decltype(law)>::singles([&](const char* name, const char* doc, auto f, auto... args) {
@@ -470,13 +488,15 @@ PYBIND11_MODULE(_core, m) {
         .def("measure", &Simulation::measure)
         .def_property_readonly("lattice", &Simulation::lattice, py::return_value_policy::reference_internal)
         .def_property_readonly("dt", &Simulation::dt)
-        .def_property_readonly("strain_rate", [](const Simulation& s) { return s.loading().strainRate; },
+        .def_property_readonly("strain_rate", [](const Simulation& s) { return s.drive().strainRate; },
                                "the strain rate driven [1/s]: strain_rate, or rule (c)'s from rate_periods")
         .def_property_readonly("dt_limit", &Simulation::stableTimeStepLimit)
         .def_property_readonly("omega1", [](const Simulation& s) { return s.frequencies().omega1; })
         .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
+        .def_property_readonly("part_names", &Simulation::partNames,
+                               "the run's dynamic parts by role and name, as in a checkpoint (drive_adaptive, ...)")
         .def("faces_joined", &Simulation::facesJoined, "some chain of intact bars joins the upper and lower faces")
         .def_property_readonly("ramp_time", &Simulation::rampTime)
         .def_property_readonly("split_window", &Simulation::splitWindow)

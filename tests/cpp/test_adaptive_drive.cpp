@@ -216,7 +216,7 @@ struct CubeRun {
 };
 
 // crackPace 1 (the default): the tail alone (the pace before the load loss: test_crack_pace.cpp).
-CubeRun runCube(TailDrive drive, std::int64_t seed = 2, double crackPace = 1) {
+CubeRun runCube(DriveId drive, std::int64_t seed = 2, double crackPace = 1) {
     Material m;
     LoadingParams lp;
     lp.tailDrive = drive;
@@ -234,7 +234,7 @@ CubeRun runCube(TailDrive drive, std::int64_t seed = 2, double crackPace = 1) {
 // at 20 x strain_rate), separates in fewer steps, and U_num is within 1 %
 // (measured: 0.4284805 J against 0.4286039 J, 132768 steps against 209088).
 TEST(AdaptiveDriveRun, SameBitsToTheLoadLossThenFewerStepsToTheSameU) {
-    const CubeRun fixed = runCube(TailDrive::Fixed), adaptive = runCube(TailDrive::Adaptive);
+    const CubeRun fixed = runCube(driveNamed("fixed")), adaptive = runCube(driveNamed("adaptive"));
     ASSERT_EQ(fixed.summary.stopReason, "separated");
     ASSERT_EQ(adaptive.summary.stopReason, "separated");
     EXPECT_TRUE(sameBits(fixed.summary.peakStress, adaptive.summary.peakStress));
@@ -267,10 +267,10 @@ TEST(AdaptiveDriveRun, ARestartPastTheLoadLossEndsOnTheSameBits) {
     lp.crackPace = 0.0625;  // the pace on: its clock and pace are in the checkpoint too
     RunParams rp;
     rp.threads = 1, rp.seed = 2;
-    const CubeRun whole = runCube(TailDrive::Adaptive, 2, lp.crackPace);
+    const CubeRun whole = runCube(driveNamed("adaptive"), 2, lp.crackPace);
     Simulation first(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     int after = 0;
-    const AdaptiveDrive& tail = std::get<ldem::AdaptiveTailDrive>(first.drivePart()).adaptive();
+    const AdaptiveDrive& tail = std::get<ldem::AdaptiveTailDrive>(first.parts().drive()).adaptive();
     first.run([&](const CurvePoint&) {
         // Stop well into the adaptive part, while the drive is faster than the floor.
         return !(tail.active() && tail.speedFactor() > 40 && ++after > 25);

@@ -14,7 +14,7 @@ using namespace ldem;
 
 TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
     const auto& table = cubeTestParameters();
-    ASSERT_EQ(table.size(), 51u);  // 2 geometry + 13 material + 15 loading + 21 run
+    ASSERT_EQ(table.size(), 52u);  // 2 geometry + 13 material + 16 loading + 21 run
     std::set<std::string> names;
     const CubeTestParams defaults;
     for (const ParamInfo& p : table) {
@@ -57,7 +57,7 @@ TEST(Parameters, SetAndGetByNameReachTheMembers) {
     EXPECT_TRUE(p.loading.topLateralFree);
     EXPECT_EQ(p.run.seed, 7);
     EXPECT_EQ(p.run.recordEvery, 3);
-    EXPECT_EQ(p.run.stopAt, StopAt::LoadLoss);
+    EXPECT_EQ(p.run.stopAt, stopNamed("load_loss"));
     EXPECT_EQ(getParameter(p, "load"), ParamValue(std::string("triangular")));
     EXPECT_EQ(getParameter(p, "seed"), ParamValue(std::int64_t(7)));
     EXPECT_EQ(getParameter(p.material, "nu"), ParamValue(0.2));

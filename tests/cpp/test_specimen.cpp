@@ -151,7 +151,7 @@ TEST(Specimen, APrismPulledAlongXIsTheCubeTestsPrismPulledAlongZ) {
     Material m;
     m.GfCV = 0;  // every bar alike: the two lattices are the same up to a rotation
     RunParams rp;
-    rp.threads = 1, rp.stopAt = StopAt::LoadLoss, rp.recordEvery = 25;  // 40 records: 1000 steps of 0.8 of the limit
+    rp.threads = 1, rp.stopAt = stopNamed("load_loss"), rp.recordEvery = 25;  // 40 records: 1000 steps of 0.8 of the limit
     LoadingParams lp;
     lp.strainRate = 0.1;
     Simulation alongX(prismPulledAlongX(m), m, lp, rp);
@@ -191,7 +191,7 @@ TEST(Specimen, AFullMaskIsTheCubeTestAndAClippedPrismStandsOnItsOwnFace) {
     LoadingParams lp;
     lp.strainRate = 0.1;
     RunParams rp;
-    rp.threads = 1, rp.stopAt = StopAt::LoadLoss, rp.recordEvery = 25;  // 40 records: 1000 steps of 0.8 of the limit
+    rp.threads = 1, rp.stopAt = stopNamed("load_loss"), rp.recordEvery = 25;  // 40 records: 1000 steps of 0.8 of the limit
     const std::vector<std::uint8_t> ones(3 * 3 * 3, 1);
     Simulation full(cubeTestSpecimen(3, 3, 3, 0.02, m, lp, ones), m, lp, rp), cube(cubeTestSpecimen(3, 3, 3, 0.02, m, lp), m, lp, rp);
     EXPECT_DOUBLE_EQ(full.measures().area, cube.measures().area);

@@ -95,7 +95,7 @@ TEST(TailBound, InARunTheDriveGoesUpToTheSteadyBoundOfItsFormulaAndNoFurther) {
     RunParams rp;
     rp.threads = 1, rp.seed = 2;
     Simulation sim(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
-    const auto& part = std::get<AdaptiveTailDrive>(sim.drivePart());
+    const auto& part = std::get<AdaptiveTailDrive>(sim.parts().drive());
     double fastest = 0, fastestMeasured = 0;
     CurvePoint last{};
     bool any = false;

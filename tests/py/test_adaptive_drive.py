@@ -32,7 +32,7 @@ def runs(tmp_path_factory):
 def test_the_parameters_come_from_the_table_with_their_defaults(cli):
     table = {p["name"]: p for p in _core.parameter_table()}
     assert table["tail_drive"]["default"] == "adaptive"
-    assert table["tail_drive"]["choices"] == ["fixed", "adaptive"]
+    assert {"fixed", "adaptive"} <= set(table["tail_drive"]["choices"])
     for name, default in (("loss_speedup", 20.0), ("tail_max_speedup", 2000.0), ("tail_load", 0.005),
                           ("tail_drag", 0.03), ("tail_step", 1.1)):
         assert table[name]["default"] == default, name

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
 
 namespace ldem {
 
@@ -55,6 +56,33 @@ void AdaptiveDrive::record(double time, double fracture, double stressSupport, d
 void AdaptiveDrive::setState(const std::vector<double>& s) {
     active_ = s.at(0) != 0, U = s.at(1), Uprev = s.at(2), S0_ = s.at(3), S1_ = s.at(4), fracture_ = s.at(5);
     time_ = s.at(6), support_ = s.at(7);
+}
+
+const char* AdaptiveTailDrive::select(const Params& p, const DriveSetup& s, bool chosen) {
+    if (chosen && p.tailMaxSpeedup < s.program.lossSpeedup)
+        throw std::invalid_argument("tail_max_speedup (" + formatNumber(p.tailMaxSpeedup) +
+                                    ") must be at least loss_speedup (" + formatNumber(s.program.lossSpeedup) +
+                                    ") for the adaptive drive");
+    // Undamped, nothing would damp the ringing its changes of speed set off (measured, 0.08 m on
+    // rollers, zeta 0: balance error 0.015 against 0.008 fixed, and another path to separation).
+    return s.Df > 0 ? name : ConstantRateDrive::name;
+}
+
+// rho H v0 / T: the face stress of a unit change of S over a record, were a column of the
+// specimen's height to follow the drive; D_f T its drag's share. Damped relative to the mean
+// velocity (from the load loss on, as this bound) a steady motion has no drag: the bound is
+// inertia's and the lag of the mean behind a speed-up, D_f tau m a (MassDamping.hpp):
+// rho H v0 (1 + D_f tau) / T, D_f T = 0. The pace's brake acts before the load loss, where
+// the damping is of the absolute velocity: the plain column.
+void AdaptiveTailDrive::setUp(const RunSetup& r) {
+    const DriveSetup& s = setup_;
+    const double T = r.recordEvery * r.dt, Df = s.Df, tau = s.filterTime;
+    const double column = s.rho * s.gaugeLength * program().v0 / T;
+    lim_ = {program().speedup, p_.tailMaxSpeedup, p_.tailLoad, p_.tailDrag, p_.tailStep, s.splitWindow,
+            tau > 0 ? column * (1 + Df * tau) : column, tau > 0 ? 0.0 : Df * T, T};
+    pace_ = CrackPace({p_.crackPace, p_.crackKinetic, column > 0 ? p_.tailDrag / column : 0.0, p_.tailStep,
+                       p_.crackSecant, p_.crackBand});
+    tail_ = AdaptiveDrive(lim_);
 }
 
 void AdaptiveTailDrive::record(const DriveRecord& r) {

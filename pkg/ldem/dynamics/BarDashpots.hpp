@@ -1,35 +1,13 @@
-// Dashpots in the bars that have left their elastic branch: numerical
-// damping of the modes that clap across closing cracks (issue 41), not a part
-// of the model's physics (that is MassDamping.hpp, the seed's ratio zeta).
-// Parameters: LDEM_BAR_DASHPOT_PARAMETERS (zeta_high).
-//
-// Why: a broken bar carries no tension and its full stiffness in compression.
-// Where a crack's faces touch, the lattice switches between two stiffnesses
-// from step to step, and near the stability limit the explicit scheme pumps
-// energy into its highest modes through that switching: the 0.48 m cube on
-// rollers at 0.9 of the limit ends with an energy balance error of 0.78 by a
-// mean strain of 1e-3, and 2.3 times the fracture energy at its load loss of
-// the same cube at 0.4. A dashpot beside every bar that has left its elastic
-// branch, acting while that bar is in compression (its crack closed), takes
-// that energy out where it is made (its force and work: BarDashpot.hpp):
-//   F_d = beta (EA/L) r de/dt,   beta = 2 zeta_high / omega_max,
-// r = 1 in compression, 0 in tension (laws/BarLaw.hpp, dashpotRatio): a
-// dashpot across a crack that opens would bridge it (with r the secant ratio
-// in tension, the 0.08 m triangular cube lost its load at a mean strain of
-// 9.4e-3 instead of 2.0e-3). Were every bar to carry one, this would be
-// stiffness-proportional damping C = beta K, whose ratio in mode i is
-//   zeta_i = beta omega_i / 2 = zeta_high omega_i / omega_max:
-// zeta_high on the highest mode, zeta_high omega_1/omega_max on the
-// fundamental (0.2 x 1/600 on the 0.12 m cube: far below the seed's 0.02).
-// Elastic bars have none: the cost stays in the bars that crack.
-//
-// The time step: the dashpot acts with v(n-1/2), explicitly. For one mode,
-//   x(n+1) - 2x(n) + x(n-1) = -h^2 x(n) - 2 zeta h (x(n) - x(n-1)),  h = omega dt,
-// is stable iff h^2 + 4 zeta h <= 4 (Jury's conditions on its characteristic
-// polynomial), i.e.
-//   dt <= (2/omega) (sqrt(1 + zeta^2) - zeta);
-// in matrix form M - (dt^2/4) K - (dt/2) C >= 0, which holds as well for
-// C <= beta K, dashpots on some bars only.
+// Dashpots in the bars that have left their elastic branch, acting while such a
+// bar is in compression: numerical damping of the modes that clap across closing
+// cracks, where the explicit scheme pumps energy into its highest modes (the
+// model's damping is MassDamping.hpp). Its force (BarDashpot.hpp):
+//   F_d = beta (EA/L) r de/dt,   beta = 2 zeta_high / omega_max,   r = 1 in compression, 0 in tension,
+// stiffness-proportional where it acts: zeta_i = zeta_high omega_i / omega_max. It
+// acts with v(n-1/2), explicitly; for one mode the scheme is stable iff
+//   dt <= (2/omega) (sqrt(1 + zeta^2) - zeta),
+// which holds as well for dashpots on some bars only (M - (dt^2/4) K - (dt/2) C >= 0).
+// Measured: results/dynamics/README.md.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -39,8 +17,15 @@
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Parameters.hpp"
-#include "ldem/RunParams.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
+    X(double, zetaHigh, "zeta_high", 0.2, "", Domain::closedOpen(0, 1),                                      \
+      "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
+      "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
+      "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
+      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
 
 namespace ldem {
 
@@ -62,9 +47,9 @@ public:
         d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
         if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
     }
-    BarDashpots(const RunParams& run, const DampingSetup& s)
-        : BarDashpots(LDEM_PART_PARAMS(Params, LDEM_BAR_DASHPOT_PARAMETERS, run), s) {}
     bool on() const { return d_.beta > 0; }
+    double coefficient() const { return 0.0; }  // no mass-proportional term
+    double lag() const { return 0.0; }
     double beta() const { return d_.beta; }  // [s]
     double stepFactor() const { return dampedStepFactor(zeta_); }
     CentralDifference nodeUpdate(const CentralDifference& cd) {

@@ -1,19 +1,11 @@
-// The drive at a constant rate with a smooth start (LDEM_SPEC section 6), and
-// its fixed speed-up after the load loss (tail_drive fixed).
-//
-// Every prescribed degree of freedom follows u = weight * U(t), with U(t) the
-// displacement of the most-pulled point:
-//   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2   for t < t_r  (velocity ramps
-//          v0 (t - t_r / 2)                        for t >= t_r  up as 1 - cos)
-// so velocity and acceleration start at zero. v0 = strain rate x height.
-// Once the load is lost the specimen hangs on mechanisms that carry almost no
-// force, and separation needs strains far beyond the peak; a faster drive
-// reaches them in fewer steps: the drive speeds up by a factor S
-// (loss_speedup), with a smooth ramp of t_q starting at t_s:  U(t) + (S - 1) U_q(t - t_s),
-// U_q the U above with t_q for t_r (the fixed drive: t_q = t_r; the adaptive
-// one picks S and t_q at the load loss, AdaptiveDrive.hpp).
-// The other drives (AdaptiveDrive.hpp, ServoDrive.hpp) share this program.
-// Parameters: LDEM_DRIVE_PARAMETERS (strain_rate, ramp_time), LDEM_SPEEDUP_PARAMETERS (loss_speedup).
+// The drive at a constant rate with a smooth start (LDEM_SPEC section 6), and its
+// fixed speed-up after the load loss (tail_drive fixed). Each prescribed DOF
+// follows u = weight x U(t), U the most-pulled point's displacement:
+//   U(t) = v0 (t - (t_r/pi) sin(pi t / t_r)) / 2  for t < t_r,  v0 (t - t_r / 2) after,
+// v0 = strain_rate x the gauge length, so that velocity and acceleration start at
+// zero. Once the load is lost a faster drive reaches separation in fewer steps:
+// U(t) + (S - 1) U_q(t - t_s), U_q the same ramp over t_q (fixed: S = loss_speedup,
+// t_q = t_r). This program is every drive's (the shared ProgramParams).
 #pragma once
 #include <cmath>
 #include <limits>
@@ -44,22 +36,26 @@ struct Drive {
     double speedup = 1;   // velocity factor after speedupStart
     double speedupStart = std::numeric_limits<double>::infinity();  // [s]; never, until the load is lost
     double speedupRamp = 0;  // t_q, the speed-up's ramp [s]
+    double strainRate = 0;   // v0 / the gauge length [1/s]
     double displacement(double t) const;
 };
 
 class ConstantRateDrive {
 public:
     static constexpr const char* name = "fixed";
-    struct Params {
-        LDEM_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
-        LDEM_SPEEDUP_PARAMETERS(LDEM_DECLARE_MEMBER)
-    };
+    static constexpr const char* doc = "loss_speedup times as fast once the load is lost, ramped in once";
+    static constexpr bool kChoice = true;
+    struct Params {};
     ConstantRateDrive() = default;  // at rest: v0 = 0
     // v0 = strain_rate x the gauge length; the ramp ramp_time, or two fundamental periods (0).
-    ConstantRateDrive(const Params& p, double gaugeLength, double period1)
+    ConstantRateDrive(const ProgramParams& p, double gaugeLength, double period1)
         : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {
-        program_.speedupRamp = program_.rampTime;
+        program_.speedupRamp = program_.rampTime, program_.strainRate = p.strainRate;
     }
+    ConstantRateDrive(const Params&, const DriveSetup& s)
+        : ConstantRateDrive(s.program, s.gaugeLength, 2 * 3.14159265358979323846 / s.omega1) {}
+    static const char* select(const Params&, const DriveSetup&, bool) { return name; }
+    void setUp(const RunSetup&) {}
     double now(double t, double) const { return program_.displacement(t); }
     double before(double t, double dt) const { return program_.displacement(t - dt); }
     double next(const DriveStep& c) const { return program_.displacement(c.time + c.dt); }

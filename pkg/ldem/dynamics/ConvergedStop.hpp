@@ -1,22 +1,20 @@
-// When is a specimen that does not separate done (stop_at converged)? A
-// triangular cube hinges about its least-pulled edge: past its load loss it
-// hangs on chains that straighten and break one column of modules after the
-// other, ever nearer the hinge, and whether the last ones ever break depends
-// on the lateral freedom of the faces. Its fracture energy U(e) grows in
-// bursts as the mean strain e doubles. The test is on doublings: rungs e_0 =
-// the strain at load loss, then the first record at or past 2 e_k. A rung is
-// quiet when
-//     U(e_k+1) - U(e_k) < growth x U(e_k+1)    and the load is lost there
-// (stress averaged over the split window below stopFraction x peak), and U has
-// converged after `quietRungs` quiet rungs in a row. One is not enough
-// (measured, 0.08 m cube, seed 1: a quiet doubling to e = 6.8e-3, then U grew
-// by 49 % to e = 0.11 as the next columns broke). U_final = U there.
-// Parameters: LDEM_CONVERGED_STOP_PARAMETERS (converged_growth).
+// stop_at converged: a specimen that hinges (a triangular cube) may never
+// separate; its fracture energy U(e) grows in bursts as the mean strain e doubles.
+// Rungs: e_0 the strain at the load loss, then the first record past 2 e_k. A rung
+// is quiet when U(e_k+1) - U(e_k) < converged_growth x U(e_k+1) with the load
+// lost there, and U has converged after `quietRungs` (2) quiet rungs in a row: one
+// is not enough (results/dynamics/README.md). U_final = U there.
 #pragma once
 #include <vector>
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_CONVERGED_STOP_PARAMETERS(X)                                                                    \
+    X(double, convergedGrowth, "converged_growth", 0.01, "", Domain::open(0, 1),                             \
+      "stop_at converged: U has converged when it grew by less than this fraction over the last doubling of "\
+      "the mean strain since load loss, with the load still below stop_fraction x peak")
 
 namespace ldem {
 
@@ -40,10 +38,14 @@ private:
 class ConvergedStop {
 public:
     static constexpr const char* name = "converged";
+    static constexpr const char* doc =
+        "separation or, for a specimen that hinges (triangular), U no longer growing after load loss";
+    static constexpr bool kChoice = true, kAlways = false;
     struct Params {
         LDEM_CONVERGED_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     explicit ConvergedStop(const Params& p) : convergence_(p.convergedGrowth) {}
+    void setUp(const RunSetup&) const {}
     void record(StopRecord& r);
     const char* reason(const CurvePoint&, const RunSummary& s) const {
         return s.converged.reached() ? "converged" : nullptr;

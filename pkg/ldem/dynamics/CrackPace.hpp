@@ -1,60 +1,14 @@
-// The drive's pace before the load loss (tail_drive adaptive): slow while the
-// lattice moves by itself (a crack runs, a burst rings), at the given rate
-// where nothing happens (issue 41, item 3).
-// Parameters: crack_pace, crack_kinetic, crack_secant, crack_band (LDEM_ADAPTIVE_DRIVE_PARAMETERS); the
-// brake's bound is the adaptive drive's inertia budget (tail_drag), its release
-// the ratio tail_step.
-//
-// Why. At and past its peak a large specimen releases elastic energy into its
-// cracks faster than the drive loads it; a drive that keeps its rate feeds the
-// running crack as well, and what it feeds depends on the rate. Measured on
-// the 0.48 m uniform cube, seed 1 (results/dynamics/criteria.md): the fracture
-// energy at the load loss is 23.21 J at 0.02 /s, 21.80 J at a quarter and
-// 21.47 J at a sixteenth of that rate, while the peak moves by 0.5 % and 0.07 %.
-// A whole test at a sixteenth costs 11 times the steps; slowing the drive only
-// while the lattice moves by itself takes 1.8 times the steps to the load loss
-// (9,077 against 5,162), and the quarter rate's energy moves by +1.5 % from it.
-//
-// The drive's program U(tau) (ConstantRateDrive.hpp) runs on its own clock tau,
-//   d tau / dt = P,
-// the pace P in [crack_pace, 1]. At each record (K_own the kinetic energy less
-// the drive's quasi-static motion, W the external work, U_f the fracture
-// energy, at that state):
-//   U_f grew since the last record, K_own > crack_kinetic x W, the load not lost:  target crack_pace
-//   near the peak (below), the load not lost:                                      target crack_pace
-//   else                                                                           target 1
-// K_own = sum 1/2 m |v - (U'/U) u|^2 (Integrator.hpp, ownKineticEnergy): a
-// specimen the drive leads quasi-statically moves as u = U phi, and K_own
-// counts only what is not that motion: a running crack turns stored energy
-// into it. K itself would count the specimen's own motion under the drive:
-// on the coarse notched beam of examples/beam_3pb.toml at 0.1 D/s that is near
-// 1e-3 of W, the pace braked and released in turn, and the peak rose by 11 %;
-// on K_own it stays within 0.05 % of the unpaced peak, and the quarter rate's
-// peak within 0.83 % (results/dynamics/criteria.md, "The pace on K_own").
-// (While no bar softens there is no crack to follow: the smooth start is left alone.)
-//
-// Near the peak (crack_secant > 0). A large cube snaps back at its peak: it stores
-// more elastic energy than the rest of its fracture takes, and the load falls to
-// nothing within half a fundamental period at any rate. What the rate adds to the
-// fracture energy is the drive's work during that snap (0.96 m uniform cube, seed 1:
-// 129.6 J at 0.02 /s, 104.4 J at 0.000625 /s), while the energy before the peak does
-// not move with the rate (within 1.5 %; results/dynamics/cube_rate.md). K_own rises
-// only once the snap runs, too late for the brake, so the drive must already be slow
-// at the peak. With S = sigma / eps the curve's secant at a record and E_0 its largest
-// value while no bar had softened (the elastic secant),
-//   near the peak:  S < crack_secant x E_0  and  sigma >= crack_band x peak so far.
-// Below the band the snap is over (a triangular cube falls to 0.2-0.35 of its peak
-// and softens slowly from there to its load loss: that stretch is not slowed for
-// its secant); while the snap rings, the K_own rule above holds the pace.
-// After the load loss the adaptive tail takes over (AdaptiveDrive.hpp) and the
-// pace returns to 1.
-// The pace moves towards its target within the adaptive drive's bounds: down
-// by at most B = tail_drag peak T / (rho H v0) per record (the drive's
-// deceleration puts at most tail_drag x peak on a column of the specimen's
-// height), up by at most the ratio tail_step. Within a record interval of R
-// steps it ramps linearly from P_0 to P_1, as the tail's factor does:
-//   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R),   k = 0..R-1.
-// crack_pace = 1 (the default): tau = t, the constant-rate program, bit for bit.
+// The drive's pace before the load loss (tail_drive adaptive): the program U(tau)
+// runs on its own clock, d tau/dt = P, P in [crack_pace, 1], slow while the lattice
+// moves by itself, so that the drive does not feed a running crack. At a record
+// the target is crack_pace if the load is not lost and either U_f grew with
+// K_own > crack_kinetic x W (K_own: the kinetic energy less the drive's
+// quasi-static motion, Integrator.hpp) or the curve is near its peak (its secant
+// sigma/eps < crack_secant x the elastic one, sigma >= crack_band x the peak so far);
+// else 1. P moves towards it down by at most tail_drag peak T / (rho H v0), up by
+// the ratio tail_step, linearly over the record's R steps:
+//   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R).
+// crack_pace 1: tau = t, bit for bit. Measured: results/dynamics/README.md.
 #pragma once
 #include <vector>
 

@@ -3,7 +3,6 @@
 // carries load. The reaction rings around zero for a while after the last
 // large ruptures, so the stress averaged over the last `window` seconds (two
 // fundamental periods by default) must be below fraction x peak.
-// Parameters: LDEM_LOAD_LOSS_PARAMETERS (stop_fraction, split_window).
 #pragma once
 #include <cstdint>
 #include <deque>
@@ -12,6 +11,13 @@
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Record.hpp"
+
+// Its parameters.
+#define LDEM_LOAD_LOSS_PARAMETERS(X)                                                                         \
+    X(double, stopFraction, "stop_fraction", 0.01, "", Domain::closedOpen(0, 1),                             \
+      "the load is lost when the stress, averaged over the split window, is below this fraction of the peak")\
+    X(double, splitWindow, "split_window", 0.0, "s", Domain::atLeast(0),                                     \
+      "averaging time of the load-loss test (0: two fundamental periods)")
 
 namespace ldem {
 

@@ -1,26 +1,31 @@
-// Stop at the load loss (stop_at load_loss): the event is the load-loss
-// detector's (LoadLoss.hpp), this rule only ends the run there, and never
-// before loss_stop_strain_ratio x the mean strain at the peak. The floor is for
-// a specimen whose load falls fast after its peak (a small uniform cube): its
-// crack picture and the softening branch of its curve need the strain to move
-// on past the peak before the run ends (the size-effect study's triangular half
-// stops here: issue 41).
-// Parameters: LDEM_LOAD_LOSS_STOP_PARAMETERS (loss_stop_strain_ratio).
+// stop_at load_loss: the event is the load-loss test's (LoadLoss.hpp); this
+// rule ends the run there, and never before loss_stop_strain_ratio x the mean
+// strain at the peak, so that a specimen whose load falls fast after its peak
+// (a small uniform cube) keeps its softening branch and its crack in the record.
 #pragma once
 #include <vector>
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
+// Its parameters.
+#define LDEM_LOAD_LOSS_STOP_PARAMETERS(X)                                                                    \
+    X(double, lossStopStrainRatio, "loss_stop_strain_ratio", 10.0, "", Domain::atLeast(0),                   \
+      "stop_at load_loss: the run goes on at least to this multiple of the mean strain at the peak, so that " \
+      "the softening branch and the crack are in the record")
+
 namespace ldem {
 
 class LoadLossStop {
 public:
     static constexpr const char* name = "load_loss";
+    static constexpr const char* doc = "the load-loss test's event, at loss_stop_strain_ratio x the strain at the peak at the earliest";
+    static constexpr bool kChoice = true, kAlways = false;
     struct Params {
         LDEM_LOAD_LOSS_STOP_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     explicit LoadLossStop(const Params& p) : p_(p) {}
+    void setUp(const RunSetup&) const {}
     void record(StopRecord&) {}
     const char* reason(const CurvePoint& p, const RunSummary& s) const {
         const bool pastFloor = p.meanStrain >= p_.lossStopStrainRatio * s.strainAtPeak;

@@ -1,32 +1,13 @@
-// Mass-proportional damping (LDEM_SPEC section 5): the force -D_f m v on
-// every node, D_f = 2 zeta omega_1, the damping ratio zeta on the fundamental
-// mode (every mode i has 2 zeta_i omega_i = D_f); damping_omega > 0 states zeta
-// on that frequency instead, D_f = 2 zeta damping_omega. It enters the node update of
-// central differences (Integrator.hpp) through the coefficients a and b of
-// CentralDifference; its work is the integrator's. It adds no bar force.
-// Parameters: LDEM_MASS_DAMPING_PARAMETERS (zeta, tail_damping, damping_filter_periods).
-//
-// tail_damping relative (issue 41 item 4): past its load loss a specimen's
-// upper part hangs from the drive and moves with it; -D_f m v drags it with
-// the drive's speed and breaks chains a quasi-static test would not. From the
-// record that finds the load loss on, the force is -D_f m (v - vbar), vbar
-// each node's velocity low-passed with the time constant
-// tau = damping_filter_periods x 2 pi/omega_1,
-//   vbar' = (v - vbar) / tau,   vbar = v at the switch.
-// A steady motion (vbar = v) is not dragged. For v = V e^{i omega t}, vbar =
-// V/(1 + i omega tau), so v - vbar = v i omega tau / (1 + i omega tau): the
-// part in phase with v, v (omega tau)^2 / (1 + (omega tau)^2), is damping of
-// ratio
-//   zeta(omega) = (D_f / (2 omega)) (omega tau)^2 / (1 + (omega tau)^2),
-// the absolute damping's ratio times (omega tau)^2 / (1 + (omega tau)^2):
-// at omega_1 with tau = 2 T_1, omega_1 tau = 4 pi, 0.9937; the part in
-// quadrature, -D_f m omega^2 tau / (1 + (omega tau)^2) x (a negative
-// stiffness), shifts omega^2 by D_f tau / (1 + (omega tau)^2) relative: 0.2 %
-// at omega_1 with zeta 0.02. During a speed-up of acceleration a the mean
-// lags v by at most a tau: the drag is at most D_f tau m a (AdaptiveDrive.hpp).
-// Before the load loss nothing changes, bit for bit. Its state: whether it
-// switched, and vbar of every node (node-local: a rank moves the vbar of the
-// nodes it advances; no halo reads it).
+// Mass-proportional damping (LDEM_SPEC section 5): the force -D_f m v on every
+// node, D_f = 2 zeta omega_1 (or 2 zeta damping_omega), in the node update of
+// central differences (Integrator.hpp). tail_damping relative: from the record of
+// the load loss on, -D_f m (v - vbar), vbar each node's velocity low-passed,
+//   vbar' = (v - vbar) / tau,   tau = damping_filter_periods x 2 pi/omega_1,
+// so that a part that moves with the drive is not dragged; a vibration at omega
+// keeps the share (omega tau)^2 / (1 + (omega tau)^2) of its damping (0.9937 at
+// omega_1, tau = 2 T_1), and a speed-up of acceleration a is dragged by at most
+// D_f tau m a (AdaptiveDrive.hpp). Its state: whether it switched, and vbar
+// (node-local: a rank moves the vbar of the nodes it advances).
 #pragma once
 #include <stdexcept>
 #include <vector>
@@ -34,8 +15,23 @@
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
 #include "ldem/Parameters.hpp"
-#include "ldem/RunParams.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_MASS_DAMPING_PARAMETERS(X)                                                                      \
+    X(double, zeta, "zeta", 0.02, "", Domain::closed(0, 10),                                                 \
+      "damping ratio on the fundamental mode (D_f = 2 zeta omega_1); at most 10: above, the damping forces, "\
+      "not the bars, carry the load (at 10 they take 5% of the work by the peak, the peak 3% lower than at 0.02)")\
+    X(double, dampingOmega, "damping_omega", 0.0, "rad/s", Domain::atLeast(0),                              \
+      "the circular frequency zeta is stated on: D_f = 2 zeta damping_omega (0: omega_1, the fundamental "    \
+      "mode; another mode's, or one D_f for specimens of every size)")                                       \
+    X(bool, tailDampingRelative, "tail_damping", false, "", Domain::choices({"absolute", "relative"}),        \
+      "the mass-proportional damping from the load loss on: on each node's absolute velocity, or relative "  \
+      "to its mean velocity (low-passed over damping_filter_periods): a part that moves with the drive is "  \
+      "then not dragged, a vibration at omega_1 damped by zeta x 0.994 (2 periods)")                          \
+    X(double, dampingFilterPeriods, "damping_filter_periods", 2.0, "", Domain::closed(0.5, 100),             \
+      "tail_damping relative: the time constant of each node's mean velocity, in fundamental periods "       \
+      "2 pi/omega_1; a vibration at omega keeps the ratio (omega tau)^2 / (1 + (omega tau)^2) of its damping")
 
 namespace ldem {
 
@@ -59,10 +55,9 @@ public:
         : Df_(massDampingCoefficient(p.zeta, p.dampingOmega > 0 ? p.dampingOmega : omega1)),
           relative_(p.tailDampingRelative),
           tau_(p.dampingFilterPeriods * 2 * 3.14159265358979323846 / omega1) {}
-    // Every damping is built from the run's parameters and its set-up (Registry.hpp: makeDampings).
-    MassDamping(const RunParams& run, const DampingSetup& s)
-        : MassDamping(LDEM_PART_PARAMS(Params, LDEM_MASS_DAMPING_PARAMETERS, run), s.omega1) {}
+    MassDamping(const Params& p, const DampingSetup& s) : MassDamping(p, s.omega1) {}
     double coefficient() const { return Df_; }  // D_f [1/s]
+    double lag() const { return relative_ ? tau_ : 0.0; }  // the filter time of the relative tail, else 0 [s]
     bool relative() const { return relative_; }  // tail_damping relative
     double filterTime() const { return tau_; }   // tau [s]
     bool switched() const { return switched_; }  // relative from here on

@@ -1,41 +1,48 @@
 // The dynamic parts of a run, in the manner of YADE's engines or LAMMPS's
-// fixes: each is one class in one header (and its .cpp), with its parameters
-// (its own X-macro list in Parameters.hpp, spliced into its group's list, read
-// as its Params), its state for checkpoints and the hooks below; Registry.hpp
-// lists them and builds the ones a run chose by name. Simulation steps them
-// in order and knows none of their rules.
-//
-// Every part:   static constexpr const char* name;   state() -> std::vector<double>;   setState(state)
-// A drive (Drives): the displacement U of the drive's DOFs (Specimen.hpp)
-//   double now(t_n, dt) const       U(t_n)
-//   double before(t_n, dt) const    U(t_n-1)
-//   double next(const DriveStep&)   U(t_n+1), once per step (advances its state)
-//   void record(const DriveRecord&) at each record, after the load-loss test
-//   const Drive& program() const    its program (ConstantRateDrive.hpp): v0, ramp
-// A stop rule (StopRules):
-//   void record(StopRecord&)        at each record, before the observer: its event in the summary
-//   const char* reason(point, summary) const   after the observer: its stop reason, or nullptr
-// A damping (Dampings, all of them applied in the registry's order), built from (RunParams, DampingSetup):
-//   double stepFactor() const        its share of the stable time step (1: none; dt <= factor x 2/omega_max)
-//   CentralDifference nodeUpdate(CentralDifference)   the node update with its terms (Integrator.hpp)
-//   DashpotPass barPass(const Field3& v)   its bar forces in the force pass (BarDashpot.hpp), or none
-//   double stepWork(int m) const     the work its bar forces of bar layer m dissipated in this step [J]
-//   double closingWork(int m), openingWork(int m) const   that work's two halves (BarDashpot.hpp)
-//   void record(const DampingRecord&)  at each record, after the drive (Simulation then takes its node update anew)
+// fixes: a drive, the dampings, the stop rules, each one class in one header
+// (and its .cpp) with its name, its parameters (an X-macro list in its header,
+// read as its Params), its state for checkpoints and its hooks. Registry.hpp
+// lists them, one line each, and checks their hooks at compile time (isDrive,
+// isStop, isDamping); Parts.hpp builds the ones a run chose by name and steps
+// them, so that Simulation knows none of their rules. What the hooks are given
+// is below.
 #pragma once
 #include <cstdint>
 #include <functional>
 
 #include "ldem/Field3.hpp"
+#include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Record.hpp"
 
 namespace ldem {
+
+// The drive's program that every drive shares (ConstantRateDrive.hpp).
+struct ProgramParams {
+    LDEM_DRIVE_PARAMETERS(LDEM_DECLARE_MEMBER)
+    LDEM_SPEEDUP_PARAMETERS(LDEM_DECLARE_MEMBER)
+};
+
+// What a drive is built from, beyond its parameters.
+struct DriveSetup {
+    ProgramParams program;  // its strain_rate the one driven (rate_periods')
+    double gaugeLength = 0, omega1 = 0, splitWindow = 0, rho = 0;  // [m], [rad/s], [s], [kg/m^3]
+    double Df = 0, filterTime = 0;  // the mass damping's D_f [1/s]; its filter time, relative (0: absolute) [s]
+    bool openingControl = false;    // the specimen has a controlled probe
+};
 
 // What a damping is built from, beyond its parameters.
 struct DampingSetup {
     double omega1 = 0, omegaMax = 0;  // [rad/s]
     std::int64_t bars = 0;            // of the lattice (its bar numbers)
     int layers = 0;                   // bar layers
+};
+
+// The run's set-up, complete: every drive and stop rule is told it once (setUp), before the first step.
+struct RunSetup {
+    double dt = 0;             // [s]
+    int recordEvery = 1;       // R [steps]
+    double epsP = 0;           // the bars' critical strain
+    double firstRecord = 0;    // the mean strain at the first record of the default interval
 };
 
 // A step of the drive: from state n (time t_n) to n+1.

@@ -14,7 +14,12 @@ namespace ldem {
 class SeparationStop {
 public:
     static constexpr const char* name = "separation";
+    static constexpr const char* doc = "no chain of intact bars joins the faces";
+    static constexpr bool kChoice = true, kAlways = true;  // stop_at separation: no other rule
     static constexpr std::int64_t checkSteps = 100;
+    struct Params {};
+    explicit SeparationStop(const Params& = {}) {}
+    void setUp(const RunSetup&) const {}
     void record(StopRecord& r);
     const char* reason(const CurvePoint&, const RunSummary& s) const {
         return s.separation.reached() ? "separated" : nullptr;

@@ -1,24 +1,22 @@
-// Opening control: the drive moves so that an opening c (a probe, e.g. the
-// CMOD) follows the program c*(t) = r S(t), S the smooth ramp above. The drive
-// displacement U is state, advanced once per step from state n:
+// Opening control: the drive moves so that an opening c (a probe, e.g. the CMOD)
+// follows c*(t) = r S(t), S the smooth ramp. U is state, advanced from state n:
 //   U(n+1) = U(n) + dt clamp((r S'(t) + g (c*(t) - c)) / a, -v_max S'(t), v_max S'(t)),  t = t_n + dt/2,
-// with a = c / U the secant ratio of opening to drive displacement (unknown,
-// and the velocity v_max S'(t), until both have moved): the velocity that
-// opens the mouth at the program's rate, plus a correction of the lag at the
-// rate g [1/s]. v_max (Drive::v0, displacement control's rate) is the actuator's
-// speed limit, reached smoothly. Why g = D_f / 2: with mass-proportional
-// damping every mode has 2 zeta_i omega_i = D_f, and the integral loop
-// U' = (g/a) (c* - c) around a mode that opens the mouth as c = a_t U crosses
-// -180 degrees at omega_i with the gain (g/a) a_t / D_f; below 1, stable, as
-// long as the tangent ratio a_t < 2a. Past the peak a crack that runs on its
-// own opens the mouth ahead of the program (c > c*), and the drive backs off.
-// Parameters: LDEM_SERVO_PARAMETERS (opening_rate); the program (v_max, the ramp) is the fixed drive's.
+// a = c / U the secant ratio, v_max the displacement program's v0 (the actuator's
+// limit). g = D_f / 2: with mass-proportional damping every mode has 2 zeta_i
+// omega_i = D_f, and the loop U' = (g/a)(c* - c) around a mode crosses -180
+// degrees with the gain (g/a) a_t / D_f, below 1 while the tangent ratio a_t < 2a.
 #pragma once
+#include <stdexcept>
 #include <vector>
 
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/ConstantRateDrive.hpp"
 #include "ldem/dynamics/Part.hpp"
+
+// Its parameters.
+#define LDEM_SERVO_PARAMETERS(X)                                                                             \
+    X(double, openingRate, "opening_rate", 0.0, "m/s", Domain::atLeast(0),                                   \
+      "opening control: the rate of the specimen's controlled probe (0: displacement control at strain_rate)")
 
 namespace ldem {
 
@@ -40,6 +38,8 @@ struct Servo {
 class ServoDrive {
 public:
     static constexpr const char* name = "servo";
+    static constexpr const char* doc = "opening control: the controlled probe opens at opening_rate";
+    static constexpr bool kChoice = false;  // the drive of every specimen with a controlled probe
     struct Params {
         LDEM_SERVO_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
@@ -47,6 +47,15 @@ public:
     ServoDrive(const Params& p, const ConstantRateDrive& fixed, double Df) : program_(fixed.program()) {
         servo_.rate = p.openingRate, servo_.gain = 0.5 * Df;
     }
+    ServoDrive(const Params& p, const DriveSetup& s) : ServoDrive(p, ConstantRateDrive(ConstantRateDrive::Params{}, s), s.Df) {}
+    // Refuses opening control without opening_rate, and opening_rate without opening control.
+    static const char* select(const Params& p, const DriveSetup& s, bool) {
+        if (s.openingControl != (p.openingRate > 0))
+            throw std::invalid_argument(s.openingControl ? "opening control (a controlled probe) needs opening_rate > 0"
+                                                         : "opening_rate needs a controlled probe (measure.control)");
+        return name;
+    }
+    void setUp(const RunSetup&) {}
     double now(double, double) const { return servo_.U; }
     double before(double, double) const { return servo_.Uprev; }
     double next(const DriveStep& c) {

@@ -53,7 +53,7 @@ inline DamageState damageState(double kappa, double epsP, double epsR) {
 // The ratio r of a bar's dashpot (BarDashpot.hpp), at damage kappa and strain
 // eps: 1 while a bar that has left its elastic branch is in compression (its
 // crack closed: there the faces clap), else 0, so that no dashpot bridges a
-// crack that opens (in tension it held the load of a fast tail up: issue 41).
+// crack that opens (in tension it held the load of a fast tail up: results/dynamics/README.md).
 inline double dashpotRatio(double kappa, double epsP, double eps) { return kappa > epsP && eps < 0.0 ? 1.0 : 0.0; }
 
 // The path of a row of bars through the force loop (InternalForces.hpp): the

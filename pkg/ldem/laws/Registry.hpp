@@ -6,6 +6,8 @@
 // law's `name`) is the `law` parameter's choice; the checks below run at compile time.
 #pragma once
 #include <array>
+#include <cstdint>
+#include <string>
 #include <cstddef>
 #include <string_view>
 #include <type_traits>
@@ -77,6 +79,21 @@ BarLaws makeBarLaw(BarLawId which, const Lattice& lat, const Material& m, const 
         if (std::size_t(which) != I) return makeBarLaw<I + 1>(which, lat, m, Gf);
     return BarLaws(std::in_place_index<I>, lat, m, Gf);
 }
+
+// What Python, the writers and checkpoints ask of the law chosen (any law), for the bars of lat:
+// a per-bar array and a constant by name (throw on an unknown name), the DamageState of every
+// bar, the energy each bar dissipates when it breaks, the axial force of every bar at u [N].
+const std::vector<double>& lawArray(const BarLaws& law, const std::string& name);
+double lawConstant(const BarLaws& law, const std::string& name);
+std::vector<std::uint8_t> damageStates(const BarLaws& law, std::int64_t bars);
+std::vector<double> ruptureEnergies(const BarLaws& law, const Lattice& lat);
+std::vector<double> barForces(const BarLaws& law, const Lattice& lat, const std::vector<double>& strains);
+// The law's per-bar state (its arrays by name, its softening rows), and back: throws
+// std::invalid_argument if the arrays are of another law or another lattice.
+void lawState(const BarLaws& law, std::vector<std::pair<std::string, std::vector<double>>>& bars,
+              std::vector<std::uint8_t>& softening);
+void setLawState(BarLaws& law, const std::vector<std::pair<std::string, std::vector<double>>>& bars,
+                 const std::vector<std::uint8_t>& softening);
 
 // f(static_cast<Law*>(nullptr)) for every law type, in registry order.
 template <class F, std::size_t... I>

@@ -1,0 +1,111 @@
+// A run's dynamic parts, built by name from the registry (Registry.hpp) and
+// stepped in order: the dampings (all of them), the drive (tail_drive's, or the
+// specimen's servo), the load-loss test, the stop rules (those in every run and
+// stop_at's) and the quasi-static guard (QuasiStatic.hpp: it refuses a drive
+// too fast or too slow at set-up, and flags K/W at the peak). At a record the
+// load-loss test and the stop rules find their events, then the drive and the
+// dampings answer them; after the observer the first stop rule's reason ends
+// the run. A checkpoint holds each part's state under its role and name
+// (drive_adaptive, test_load_loss, stop_separation, damping_mass, quasi_static).
+#pragma once
+#include <functional>
+#include <tuple>
+#include <string>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/RunParams.hpp"
+#include "ldem/dynamics/Registry.hpp"
+
+namespace ldem {
+
+// What the parts are built from, beyond the parameters.
+struct PartsSetup {
+    double omega1 = 0, omegaMax = 0;  // [rad/s]
+    std::int64_t bars = 0;            // of the lattice
+    int layers = 0;                   // bar layers
+    double gaugeLength = 0;           // [m]
+    bool openingControl = false;      // the specimen has a controlled probe
+};
+
+// The loading as driven: rate_periods > 0 sets strain_rate from the specimen's
+// omega_1 (rule (c), QuasiStatic.hpp), and the relations are checked at that rate.
+LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const RunParams& r, double omega1, double L0);
+
+using PartStates = std::vector<std::pair<std::string, std::vector<double>>>;
+
+class Parts {
+public:
+    Parts() = default;
+    Parts(const Material& m, const LoadingParams& load, const RunParams& run, const PartsSetup& s);
+    // The run's set-up is complete: every drive and stop rule is told it, the guard checks the drive.
+    void setUp(const RunSetup& r);
+
+    // The dampings: their share of the stable time step, their node update from the undamped
+    // one, the bar forces of the one that has them (or none), the work of bar layer m's in this step.
+    double stepFactor() const {
+        return std::apply([](const auto&... d) { return (1.0 * ... * d.stepFactor()); }, dampings_);
+    }
+    CentralDifference nodeUpdate(double dt) {
+        return std::apply([&](auto&... d) {
+            CentralDifference cd(dt, 0.0);
+            ((cd = d.nodeUpdate(cd)), ...);
+            return cd;
+        }, dampings_);
+    }
+    DashpotPass barPass(const Field3& v) {  // one damping at most has bar forces
+        return std::apply([&](auto&... d) {
+            DashpotPass pass;
+            ((pass = pass.state ? pass : d.barPass(v)), ...);
+            return pass;
+        }, dampings_);
+    }
+    double stepWork(int m) const {
+        return std::apply([&](const auto&... d) { return (0.0 + ... + d.stepWork(m)); }, dampings_);
+    }
+    double closingWork(int m) const {
+        return std::apply([&](const auto&... d) { return (0.0 + ... + d.closingWork(m)); }, dampings_);
+    }
+    double dampingCoefficient() const {  // D_f [1/s]
+        return std::apply([](const auto&... d) { return (0.0 + ... + d.coefficient()); }, dampings_);
+    }
+    double splitWindow() const { return splitWindow_; }
+
+    // The drive: its U at t_n and t_n-1, U(n+1) (once a step), its program.
+    double now(double t, double dt) const { return std::visit([&](const auto& d) { return d.now(t, dt); }, drive_); }
+    double before(double t, double dt) const {
+        return std::visit([&](const auto& d) { return d.before(t, dt); }, drive_);
+    }
+    double next(const DriveStep& c) { return std::visit([&](auto& d) { return d.next(c); }, drive_); }
+    const Drive& program() const {
+        return std::visit([](const auto& d) -> const Drive& { return d.program(); }, drive_);
+    }
+
+    // A record (state n, v(n-1/2)): every part's events, in order, and the summary's.
+    void record(const CurvePoint& p, RunSummary& s, const Field3& v, const std::function<bool()>& facesJoined,
+                double dt);
+    // After the observer: the first stop rule's reason, in the registry's order, else "".
+    std::string stopReason(const CurvePoint& p, const RunSummary& s) const;
+
+    // Each part's state by role and name, and back (throws if the names are not this set-up's).
+    PartStates states() const;
+    void setStates(const PartStates& saved);
+    std::vector<std::string> names() const;
+
+    const Drives& drive() const { return drive_; }
+    const Dampings& dampings() const { return dampings_; }
+
+private:
+    Dampings dampings_;
+    Drives drive_;
+    LoadLossDetector loadLoss_;
+    std::vector<StopRules> stops_;
+    KineticAtPeak kineticAtPeak_;
+    double splitWindow_ = 0, omega1_ = 0;
+    RunSetup run_;
+};
+
+}  // namespace ldem
