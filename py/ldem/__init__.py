@@ -6,6 +6,7 @@ fracture and size effects in concrete. See README.md and docs/ for the manual.
     result = ldem.run_cube(ldem.CubeTest(size=0.12), out="out/cube")   # and its files
 """
 import importlib
+import importlib.util
 import os
 
 # Idle OpenMP threads sleep rather than spin (GOMP spins 300,000 rounds
@@ -25,8 +26,11 @@ __all__ = sorted(_NAMES)
 
 
 def __getattr__(name):
-    if name not in _NAMES:
+    if name in _NAMES:
+        value = getattr(importlib.import_module(f".{_NAMES[name]}", __name__), name)
+    elif importlib.util.find_spec(f".{name}", __name__) is not None:  # a module of the package: ldem.io, ...
+        value = importlib.import_module(f".{name}", __name__)
+    else:
         raise AttributeError(f"module 'ldem' has no attribute {name!r}")
-    value = getattr(importlib.import_module(f".{_NAMES[name]}", __name__), name)
     globals()[name] = value
     return value
