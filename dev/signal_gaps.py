@@ -2,26 +2,33 @@
 """The longest waits for a signal in `ldem cube`'s set-up: how late a SIGTERM
 sent then would be heard.
 
-ldem runs in this process with a handler of SIGUSR1 that notes the time and
-the Python line it ran at; a second process sends SIGUSR1 every 10 ms. A
-Python handler runs only where ldem would hear SIGTERM (between Python lines,
-or where the core's loops poll, pkg/ldem/Interrupt.hpp), so the gaps between
-its runs are the waits a SIGTERM would have had. The set-up ends at the first
-row of curve.csv; then the sender sends SIGTERM and the command stops.
+ldem runs in this process with a handler of SIGUSR1; a second process sends
+SIGUSR1 every 10 ms, noting in a shared file the time of the first one the
+handler has not yet seen. A Python handler runs only where ldem would hear
+SIGTERM (between Python lines, or where the core's loops poll,
+pkg/ldem/Interrupt.hpp), so the time from that note to the handler's run is
+the wait a SIGTERM would have had (the sender's own delays on a busy machine
+do not count: a signal not yet sent is not waited for). The set-up ends at
+the first row of curve.csv; then the sender sends SIGTERM and the command
+stops.
 
     PYTHONPATH=build/python dev/signal_gaps.py --size 0.96 --threads 1
     (any options of ldem cube; --out defaults to a temporary folder)
 """
+import mmap
 import os
 import signal
+import struct
 import subprocess
 import sys
 import tempfile
 import time
 
 SENDER = """
-import os, signal, sys, time
-pid, curve = int(sys.argv[1]), sys.argv[2]
+import mmap, os, signal, struct, sys, time
+pid, curve, note = int(sys.argv[1]), sys.argv[2], sys.argv[3]
+with open(note, "r+b") as f:
+    sent = mmap.mmap(f.fileno(), 8)
 while True:
     try:
         with open(curve) as f:
@@ -31,36 +38,45 @@ while True:
                 break
     except OSError:
         pass
+    if struct.unpack("d", sent[:8])[0] == 0:
+        sent[:8] = struct.pack("d", time.monotonic())
     os.kill(pid, signal.SIGUSR1)
     time.sleep(0.01)
 """
 
 
 def main(argv):
-    out = None
+    tmp = tempfile.mkdtemp(prefix="signal_gaps_")
     if "--out" not in argv:
-        out = tempfile.mkdtemp(prefix="signal_gaps_")
-        argv = [*argv, "--out", os.path.join(out, "cube")]
+        argv = [*argv, "--out", os.path.join(tmp, "cube")]
     folder = argv[argv.index("--out") + 1]
-    heard = []  # (monotonic time, file:line of the Python code it ran at)
-    signal.signal(signal.SIGUSR1, lambda s, frame: heard.append(
-        (time.monotonic(), f"{os.path.basename(frame.f_code.co_filename)}:{frame.f_lineno}")))
+    note = os.path.join(tmp, "sent")
+    with open(note, "wb") as f:
+        f.write(bytes(8))
+    with open(note, "r+b") as f:
+        sent = mmap.mmap(f.fileno(), 8)
+    heard = []  # (seconds waited, monotonic time heard, file:line of the Python code it ran at)
+
+    def handler(signum, frame):
+        now, first = time.monotonic(), struct.unpack("d", sent[:8])[0]
+        sent[:8] = bytes(8)
+        if first:
+            heard.append((now - first, now, f"{os.path.basename(frame.f_code.co_filename)}:{frame.f_lineno}"))
+    signal.signal(signal.SIGUSR1, handler)
     from ldem import cli
 
     t0 = time.monotonic()
-    sender = subprocess.Popen([sys.executable, "-c", SENDER, str(os.getpid()), os.path.join(folder, "curve.csv")],
+    sender = subprocess.Popen([sys.executable, "-c", SENDER, str(os.getpid()), os.path.join(folder, "curve.csv"), note],
                               stdout=subprocess.PIPE, text=True)
     code = cli.main(["cube", *argv, "--no-plots", "--no-progress"])
     first_row = float(sender.communicate()[0] or "inf")
     signal.signal(signal.SIGUSR1, signal.SIG_IGN)
-    times = [(t0, "start")] + [h for h in heard if h[0] <= first_row]
-    gaps = sorted(((b[0] - a[0], a[1], b[1], a[0] - t0) for a, b in zip(times, times[1:])), reverse=True)
-    print(f"exit {code}; set-up to the first row {first_row - t0:.2f} s, {len(times) - 1} signals heard")
-    print("longest gaps: seconds, at (s from the start), from -> to")
-    for gap, a, b, at in gaps[:8]:
-        print(f"  {gap:6.3f}  at {at:6.2f}  {a} -> {b}")
-    if out:
-        subprocess.run(["rm", "-rf", out])
+    waits = sorted((h for h in heard if h[1] <= first_row), reverse=True)
+    print(f"exit {code}; set-up to the first row {first_row - t0:.2f} s, {len(waits)} signals heard")
+    print("longest waits: seconds, heard at (s from the start), where")
+    for wait, at, where in waits[:8]:
+        print(f"  {wait:6.3f}  at {at - t0:6.2f}  {where}")
+    subprocess.run(["rm", "-rf", tmp])
 
 
 if __name__ == "__main__":
