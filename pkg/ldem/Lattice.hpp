@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "ldem/Interrupt.hpp"
 #include "ldem/Material.hpp"
 
 namespace ldem {
@@ -141,14 +142,14 @@ struct Lattice {
 };
 
 // Calls fn(bar, nodeA, nodeB, row, p) for every bar (p: position in its row),
-// rows split between threads.
+// rows split between threads, hearing signals (interruptibleFor: fn must
+// write only bar's own elements).
 template <class Fn>
 void forEachBar(const Lattice& lat, Fn fn) {
-#pragma omp parallel for schedule(static)
-    for (std::int64_t r = 0; r < std::int64_t(lat.barRows.size()); ++r) {
+    interruptibleFor(0, std::int64_t(lat.barRows.size()), [&](std::int64_t r) {
         const BarRow& row = lat.barRows[r];
         for (int p = 0; p < row.count; ++p) fn(row.first + p, row.nodeA + p, row.nodeB + p, row, p);
-    }
+    });
 }
 
 // Every bar listed explicitly, by bar number: for output, tests and the YADE

@@ -80,7 +80,9 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
     // (of no present module of a masked lattice: no bars) is removed like a prescribed one.
     Field3 s(n);
     std::int64_t freeDofs = 0;
+    InterruptCheck heard;  // the two passes over the nodes below grow with the lattice
     for (std::int64_t i = 0; i < n; ++i) {
+        heard();
         const bool removed = !(lat.mass[i] > 0);
         const double r = removed ? 0.0 : 1.0 / std::sqrt(lat.mass[i]);
         s.x[i] = (mask[i] & 1) ? 0 : r, s.y[i] = (mask[i] & 2) ? 0 : r, s.z[i] = (mask[i] & 4) ? 0 : r;
@@ -91,6 +93,7 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
     Field3 q(n), qPrev(n), w(n), tmp(n);
     BarForceBuffers barWork;
     for (std::int64_t i = 0; i < n; ++i) {  // deterministic start vector, a function of the node
+        heard();
         const std::uint64_t id = lat.globalNode(std::int32_t(i));
         q.x[i] = s.x[i] * (hashedUniform(7, id, 0) - 0.5);
         q.y[i] = s.y[i] * (hashedUniform(7, id, 1) - 0.5);

@@ -211,6 +211,39 @@ def test_the_set_up_of_a_large_lattice_stops_at_once(tmp_path, delay):
     assert not (out / "curve.csv").exists()
 
 
+def _cpu_seconds(pid: int) -> float:
+    """The CPU time process pid has used (utime + stime, /proc/PID/stat): a
+    point of its work that a busy machine does not move, as it moves wall time."""
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()  # after the command's name, which may hold spaces
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+SET_UP_HEARD = 2.0  # seconds from a signal in set-up to the exit (a signal is polled for every 0.1 s)
+
+
+def test_a_signal_amid_the_correlated_field_is_heard_at_once(tmp_path):
+    """The correlated G_f field (--corr-length: 512 cosines a bar) of the
+    0.72 m cube (36^3 modules, 650,000 bars) takes about 7 s of CPU, after a
+    Lanczos analysis of about 1.4 s (one thread, measured here). It was one
+    OpenMP loop that heard no signal: SIGTERM waited for its end, 43.6 s at
+    0.96 m beside other work. Sent 3 s of CPU into the set-up (amid the
+    field, however busy the machine), it ends the command within
+    SET_UP_HEARD, in one line: nothing ran."""
+    out = tmp_path / "field"
+    proc = _start("cube", "--size", "0.72", "--corr-length", "0.02", "--threads", "1", "--no-plots", "--no-progress",
+                  "--out", str(out))
+    _wait_for(out.exists, proc, "the output folder")
+    cpu = _cpu_seconds(proc.pid)
+    _wait_for(lambda: _cpu_seconds(proc.pid) - cpu >= 3.0, proc, "the field")
+    rc, err, seconds = _signal_and_time(proc)
+    assert rc == 143, err
+    assert err.splitlines() == ["ldem cube: terminated (SIGTERM): nothing ran: curve.csv has no rows; no checkpoint: "
+                                "it would run again from the start"], err
+    assert seconds < SET_UP_HEARD
+    assert json.loads((out / "summary.json").read_text())["error"] == "interrupted during set-up"
+
+
 def test_a_study_and_its_workers_stop_within_seconds(tmp_path):
     """Two cases in two worker processes, each between records 10^8 steps
     apart: SIGTERM to the study ends it and both workers within the deadline
