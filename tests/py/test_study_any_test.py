@@ -3,6 +3,7 @@ resumes and is named as the cubes' do; the beam study's own cases (Beam:
 a SpecimenTest stopped past its peak) keep the folders of the committed
 results; the ablation's table reads the committed runs."""
 import copy
+import json
 import os
 
 import pytest
@@ -48,6 +49,15 @@ def test_a_study_of_specimens_runs_resumes_and_never_recomputes(tmp_path):
     assert ran[:2] == [f"1 of 2 cases already finished in {out}/cases",
                        f"  {names[1]}: no loadable slice.npz: running it again"]
     assert again[1]["peak_stress_MPa"] == first[1]["peak_stress_MPa"]
+    # A parameter declared after a case ran counts at its default (the run it made): the case is finished.
+    path = os.path.join(dirs[0], "summary.json")
+    summary = json.load(open(path))
+    del summary["parameters"]["parameters"]["drive_velocity"]
+    json.dump(summary, open(path, "w"))
+    assert study.cases.unfinished_reason(dirs[0], tests[0]) is None
+    summary["parameters"]["parameters"]["E"] *= 1.01  # a parameter of another value is another run
+    json.dump(summary, open(path, "w"))
+    assert study.cases.unfinished_reason(dirs[0], tests[0]) == "other parameters"
 
 
 def test_a_study_says_each_peak_in_its_specimen_s_unit(tmp_path):

@@ -107,13 +107,19 @@ class Named:
 
 def _comparable(params: dict, test) -> dict:
     """The parameters that decide a case's result (threads, at any depth, do
-    not); for a CubeTest one declared after the case ran counts at the table's
-    default (the run it made: a cube's own default, CUBE_DEFAULTS, came later)."""
+    not); a table's parameter declared after the case ran counts at the table's
+    default (the run it made: a cube's own default, CUBE_DEFAULTS, came later),
+    for a CubeTest and in a specimen's "parameters"."""
     if isinstance(test, CubeTest):
-        return {k: params.get(k, d) for k, d in TABLE_DEFAULTS.items() if k != "threads"}
+        return _table(params)
     if isinstance(params, dict):
-        return {k: _comparable(v, test) for k, v in params.items() if k != "threads"}
+        return {k: _table(v) if k == "parameters" and isinstance(v, dict) else _comparable(v, test)
+                for k, v in params.items() if k != "threads"}
     return params
+
+
+def _table(params: dict) -> dict:
+    return {k: params.get(k, d) for k, d in TABLE_DEFAULTS.items() if k != "threads"}
 
 
 def _last_step(path: str) -> int:
