@@ -20,16 +20,12 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     run_.validate();
     validate(specimen);
     checkRelations(mat_, load_, run_, specimen.lattice.L0);
-    if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
-        throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
     threads_ = threadsFor(run_.threads, specimen.lattice.numBars(), Comm::world().size());
     setThreads(threads_);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
     meas_ = specimen.measures;
     groups_ = std::move(specimen.groups);
-    for (const std::string& g : {meas_.support, meas_.loaded})
-        if (!groups_.count(g)) throw std::invalid_argument("the specimen's measures name no node group '" + g + "'");
     support_ = &groups_.at(meas_.support), loaded_ = &groups_.at(meas_.loaded);
 
     freq_ = latticeFrequencies(lat_, pre_.mask);
@@ -65,12 +61,6 @@ CentralDifference Simulation::nodeRule() {
     CentralDifference cd = parts_.nodeUpdate(dt_);
     cd.gz = weight_.gz();
     return cd;
-}
-
-const std::vector<std::int32_t>& Simulation::group(const std::string& name) const {
-    const auto it = groups_.find(name);
-    if (it == groups_.end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
-    return it->second;
 }
 
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).

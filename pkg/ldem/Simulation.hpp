@@ -64,7 +64,7 @@ public:
     const Prescribed& prescribed() const { return pre_; }
     const Measures& measures() const { return meas_; }
     const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
-    const std::vector<std::int32_t>& group(const std::string& name) const;  // throws on an unknown name
+    const std::vector<std::int32_t>& group(const std::string& name) const { return nodeGroup(groups_, name); }
     const BarLaws& law() const { return law_; }
     const std::vector<double>& barArray(const std::string& name) const { return lawArray(law_, name); }
     double lawConstant(const std::string& name) const { return ldem::lawConstant(law_, name); }
