@@ -18,12 +18,16 @@ std::invalid_argument unknownParameter(const std::string& name) {
     return std::invalid_argument("unknown parameter '" + name + "'");
 }
 
+// A set of named choices (its domain someOf): its value is a bit per name.
 template <class T>
-constexpr bool isChoice = std::is_same_v<T, bool> || std::is_enum_v<T>;
+constexpr bool isChoiceSet = std::is_same_v<T, DampingSet>;
+template <class T>
+constexpr bool isChoice = (std::is_same_v<T, bool> || std::is_enum_v<T>) && !isChoiceSet<T>;
 
 template <class T>
 const char* kindOf() {
     if constexpr (std::is_same_v<T, double>) return "float";
+    else if constexpr (isChoiceSet<T>) return "names";
     else if constexpr (isChoice<T>) return "choice";
     else return "int";
 }
@@ -33,6 +37,7 @@ const char* kindOf() {
 template <class T>
 ParamValue toValue(const T& v, const Domain& d) {
     if constexpr (std::is_same_v<T, double>) return v;
+    else if constexpr (isChoiceSet<T>) return d.namesOf(std::uint64_t(v));
     else if constexpr (isChoice<T>) return d.names.at(std::size_t(v));
     else return std::int64_t(v);
 }
@@ -43,6 +48,9 @@ T fromValue(const std::string& name, const ParamValue& v, const Domain& d) {
         if (const auto* x = std::get_if<double>(&v)) return *x;
         if (const auto* n = std::get_if<std::int64_t>(&v)) return double(*n);
         throw std::invalid_argument(name + " must be a number (got '" + std::get<std::string>(v) + "')");
+    } else if constexpr (isChoiceSet<T>) {
+        if (const auto* s = std::get_if<std::string>(&v)) return T(d.setOf(name, *s));
+        throw std::invalid_argument(name + " must be names, comma-separated (expected " + d.describe() + ")");
     } else if constexpr (isChoice<T>) {
         const auto* s = std::get_if<std::string>(&v);
         for (std::size_t i = 0; s && i < d.names.size(); ++i)

@@ -37,7 +37,7 @@ using ParamValue = std::variant<double, std::int64_t, std::string>;
 struct ParamInfo {
     std::string group;  // geometry, material, loading or run
     std::string name, unit, help;
-    std::string kind;   // "float", "int" or "choice"
+    std::string kind;   // "float", "int", "choice" or "names" (some of the choices, comma-separated)
     Domain domain;
     ParamValue defaultValue;
 };

@@ -105,12 +105,14 @@
 
 namespace ldem {
 
-// The values a parameter may take: an interval of numbers, or one of named
-// choices (a bool or an enum: the value is the index of its name).
+// The values a parameter may take: an interval of numbers, one of named
+// choices (a bool or an enum: the value is the index of its name), or some of
+// them (a set: bit i the i-th name; said comma-separated, "none" the empty set).
 struct Domain {
     double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
     bool loClosed = true, hiClosed = true;
     std::vector<std::string> names;  // non-empty: a choice
+    bool several = false;            // some of the names, not one
 
     static Domain positive() { return {0, std::numeric_limits<double>::infinity(), false, true, {}}; }
     static Domain atLeast(double a) { return {a, std::numeric_limits<double>::infinity(), true, true, {}}; }
@@ -119,13 +121,18 @@ struct Domain {
     static Domain openClosed(double a, double b) { return {a, b, false, true, {}}; }
     static Domain open(double a, double b) { return {a, b, false, false, {}}; }
     static Domain choices(std::vector<std::string> n) { return {0, 0, true, true, std::move(n)}; }
+    static Domain someOf(std::vector<std::string> n) { return {0, 0, true, true, std::move(n), true}; }
 
     bool isChoice() const { return !names.empty(); }
     bool contains(double x) const {
         return std::isfinite(x) && (loClosed ? x >= lo : x > lo) && (hiClosed ? x <= hi : x < hi);
     }
-    // "> 0", ">= 1", "in [0, 0.5)", "one of bar, module"
+    // "> 0", ">= 1", "in [0, 0.5)", "one of bar, module", "some of mass, bar_dashpots, separated by commas, or none"
     std::string describe() const;
+    // A set of the names and back: "mass,bar_dashpots" (in the names' order; "none": no bit). An unknown
+    // name, one given twice, or "none" beside another throws std::invalid_argument naming the parameter.
+    std::string namesOf(std::uint64_t bits) const;
+    std::uint64_t setOf(const std::string& parameter, const std::string& list) const;
 };
 
 std::string formatNumber(double x);  // shortest form of 6 significant digits
@@ -138,15 +145,20 @@ std::vector<std::string> barLawNames();
 
 // The drives and the stop rules a run may choose by name (dynamics/Registry.hpp): the
 // choices of tail_drive and stop_at, whose values are the index of the name; the
+// dampings, the set `dampings` names (bit i the registry's i-th damping); each
 // parameter's help from each choice's doc.
 enum class DriveId : std::uint8_t {};
 enum class StopId : std::uint8_t {};
+enum class DampingSet : std::uint8_t {};
 std::vector<std::string> driveNames();
 std::vector<std::string> stopNames();
+std::vector<std::string> dampingNames();
 std::string driveHelp();
 std::string stopHelp();
+std::string dampingHelp();
 DriveId driveNamed(const std::string& name);
 StopId stopNamed(const std::string& name);
+DampingSet dampingsNamed(const std::string& names);  // "mass,bar_dashpots", or "none"
 
 template <class T>
 void checkParameter(const char* name, const char* unit, const T& value, const Domain& d) {

@@ -5,12 +5,15 @@
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Registry.hpp"
 
-// The run: its own parameters, every damping's list, the stop's choice and every stop rule's list, in registry order.
+// The run: its own parameters, the dampings' choice and every damping's list, the stop's choice and every stop
+// rule's list, in registry order.
 #define LDEM_RUN_PARAMETERS(X)                                                                               \
     X(std::int64_t, seed, "seed", 1, "", Domain::atLeast(0), "random specimen (same seed, same specimen)")   \
     X(double, gravity, "gravity", 0.0, "m/s^2", Domain::closed(0, 100),                                      \
       "the specimen's weight: a body force m g along -z on every free DOF, rising over the drive's smooth "    \
       "start (9.81: a beam lying on its supports); its work counts as external work")                        \
+    X(DampingSet, dampings, "dampings", dampingsNamed("mass,bar_dashpots"), "", Domain::someOf(dampingNames()), \
+      dampingHelp())                                                                                         \
     LDEM_DAMPINGS(LDEM_PART_LIST, X)                                                                         \
     X(StopId, stopAt, "stop_at", stopNamed("separation"), "", Domain::choices(stopNames()), stopHelp())      \
     LDEM_STOPS(LDEM_PART_LIST, X)                                                                            \

@@ -38,4 +38,12 @@ void RunProgress::finish(double energyTolerance) {
     summary.energyError = summary.energyBalanceError > energyTolerance;
 }
 
+void checkSizes(const Checkpoint& c, const Lattice& lat) {
+    const std::size_t n = std::size_t(lat.numNodes()), b = std::size_t(lat.numBars());
+    bool sizesMatch = c.u.x.size() == n && c.v.x.size() == n && c.f.x.size() == n &&
+                      c.softening.size() == lat.barRows.size();
+    for (const auto& [name, values] : c.bars) sizesMatch = sizesMatch && values.size() == b;
+    if (!sizesMatch) throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+}
+
 }  // namespace ldem

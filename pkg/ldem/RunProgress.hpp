@@ -2,6 +2,7 @@
 // check that its integration is stable, and its whole state at a record (a
 // checkpoint): with the specimen's parameters, enough to go on bit-identically.
 #pragma once
+#include <algorithm>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "ldem/Field3.hpp"
+#include "ldem/Lattice.hpp"
 #include "ldem/dynamics/Parts.hpp"
 #include "ldem/dynamics/Record.hpp"
 
@@ -32,6 +34,14 @@ struct RunProgress {
     void finish(double energyTolerance);  // the balance error of the whole run, flagged above the tolerance
 };
 
+// The record interval by default [steps]: a record per eps_p/50 of mean strain at the drive's initial
+// speed (meanSpeed = v0 |w|, the mean of the loaded face), about 100 before the peak; 1e9 steps for a
+// drive that moves nothing.
+inline int defaultRecordEvery(double epsP, double gaugeLength, double meanSpeed, double dt) {
+    const double rowTime = epsP / 50 * gaugeLength / meanSpeed;
+    return std::max(1, int(std::min(rowTime / dt, 1e9)));
+}
+
 struct Checkpoint {
     Field3 u, v, f;
     std::vector<std::pair<std::string, std::vector<double>>> bars;  // the law's per-bar state, by name
@@ -41,5 +51,8 @@ struct Checkpoint {
     RunProgress progress;
     PartStates parts;  // each dynamic part's, by role and name (Parts::states)
 };
+
+// Throws std::invalid_argument unless c is of a specimen of lat's sizes: its nodes, bars and softening rows.
+void checkSizes(const Checkpoint& c, const Lattice& lat);
 
 }  // namespace ldem

@@ -1,7 +1,9 @@
 #include "ldem/Simulation.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <tuple>
 
 #include "ldem/Integrator.hpp"
 #include "ldem/Interrupt.hpp"
@@ -20,16 +22,12 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     run_.validate();
     validate(specimen);
     checkRelations(mat_, load_, run_, specimen.lattice.L0);
-    if (Comm::world().size() > 1 && !specimen.lattice.isSlab())
-        throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
     threads_ = threadsFor(run_.threads, specimen.lattice.numBars(), Comm::world().size());
     setThreads(threads_);
     lat_ = std::move(specimen.lattice);
     pre_ = std::move(specimen.prescribed);
     meas_ = specimen.measures;
     groups_ = std::move(specimen.groups);
-    for (const std::string& g : {meas_.support, meas_.loaded})
-        if (!groups_.count(g)) throw std::invalid_argument("the specimen's measures name no node group '" + g + "'");
     support_ = &groups_.at(meas_.support), loaded_ = &groups_.at(meas_.loaded);
 
     freq_ = latticeFrequencies(lat_, pre_.mask);
@@ -38,9 +36,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, lat_.numBars(), lat_.numLayers(),
                                        meas_.gaugeLength, openingControl()});
     dt_ = chosenTimeStep(run_, stableTimeStepLimit(), parts_.stepFactor(), freq_.omegaMax);
-    // A record per eps_p/50 of mean strain at the drive's initial rate: about 100 before the peak.
-    const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive().v0 * std::abs(meas_.meanDriveWeight));
-    const int defaultEvery = std::max(1, int(std::min(rowTime / dt_, 1e9)));  // (a drive that moves nothing: 1e9)
+    const double meanSpeed = drive().v0 * std::abs(meas_.meanDriveWeight);
+    const int defaultEvery = defaultRecordEvery(mat_.epsP, meas_.gaugeLength, meanSpeed, dt_);
     recordEvery_ = run_.recordEvery > 0 ? run_.recordEvery : defaultEvery;
     // (the first record at the default interval: a run recorded seldom on purpose still runs)
     parts_.setUp({dt_, recordEvery_, mat_.epsP, meanStrainOf(drive().displacement(defaultEvery * dt_))});
@@ -48,14 +45,10 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
 
     law_ = makeBarLaw(mat_.law, lat_, mat_, fractureEnergyField());  // G_f drawn, realised, not kept
     clamped_ = commOf(lat_).sum(std::visit([](const auto& law) { return law.clampedOwnedBars(); }, law_));
-    const auto owned = lat_.ownedBars();  // each bar and node counted by the rank that owns it
-    std::int64_t nodes = 0;
-    for (int m = lat_.ownBegin; m < lat_.ownEnd; ++m) nodes += lat_.layerNodes(m).second;
-    totalBars_ = commOf(lat_).sum(owned.second - owned.first), totalNodes_ = commOf(lat_).sum(nodes);
+    std::tie(totalBars_, totalNodes_) = wholeLatticeSize(lat_);
     refuseAllBrittle(clamped_, totalBars_, mat_, lat_.L0);
     u_ = v_ = f_ = Field3(lat_.numNodes());
-    preSlot_ = ownedLayerSlots(lat_, pre_.node), supportSlot_ = ownedLayerSlots(lat_, *support_);
-    loadedSlot_ = ownedLayerSlots(lat_, *loaded_);
+    stepWork_ = StepWork(lat_, pre_, *support_, *loaded_, meas_.dim);
     cd_ = nodeRule();
     layerDamping_.assign(lat_.numLayers(), 0.0);
 }
@@ -65,12 +58,6 @@ CentralDifference Simulation::nodeRule() {
     CentralDifference cd = parts_.nodeUpdate(dt_);
     cd.gz = weight_.gz();
     return cd;
-}
-
-const std::vector<std::int32_t>& Simulation::group(const std::string& name) const {
-    const auto it = groups_.find(name);
-    if (it == groups_.end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
-    return it->second;
 }
 
 // 0 + x: +0, never -0, when a pushed specimen's force is 0 (curve.csv's first row).
@@ -99,9 +86,8 @@ CurvePoint Simulation::measure() const {
     // The weight's work is the drive's companion: the external work (Integrator.hpp, weightWork).
     p.externalWork = externalWork_ + weight_.work(lat_, pre_.mask, u_, v_);
     // With the bars' dashpots, the last step's work is whole once this step's bars know v(n-1/2) (BarDashpot.hpp).
-    std::vector<double> closing(std::size_t(lat_.ownEnd - lat_.ownBegin));
-    for (std::size_t i = 0; i < closing.size(); ++i) closing[i] = parts_.closingWork(lat_.ownBegin + int(i));
-    p.damping = dampingWork_ + gatherLayerSums(commOf(lat_), closing, 1)[0];
+    p.damping = dampingWork_ +
+                layerSum<1>(lat_, [&](int m, std::array<double, 1>& w) { w[0] = parts_.closingWork(m); })[0];
     return p;
 }
 
@@ -120,37 +106,21 @@ void Simulation::advance() {
 }
 
 void Simulation::finishStep() {
-    // External work of the prescribed DOFs over the centred increment
-    // (x(n+1) - x(n-1))/2: the drive holds each against the bars with -f.
-    // Under opening control the servo moves U from state n (its opening is that of state n).
+    // The drive's U(n+1); under opening control the servo moves U from state n (its opening is that of state n).
     const double tNext = time_ + dt_, Uback = parts_.before(time_, dt_), Unow = parts_.now(time_, dt_);
     const DriveStep next{time_, dt_, int(step_ % recordEvery_), recordEvery_, opening_};
     const double Unext = parts_.next(next);
-    const double centred = 0.5 * (Unext - Uback);
-    // Per owned layer: damping work, external work, support reaction (state n);
-    // one exchange of them per step, added in layer order: the same sums for
-    // any number of threads and ranks (Slab.hpp).
-    const int owned = lat_.ownEnd - lat_.ownBegin;
-    std::vector<double>& partial = stepPartials_;
-    partial.assign(4 * std::size_t(owned), 0.0);
-    for (int i = 0; i < owned; ++i) {
-        const int m = lat_.ownBegin + i;
+    const StepSums sums = stepWork_.sum(lat_, f_, 0.5 * (Unext - Uback), [&](int m) {  // (StepWork.hpp)
         const double bars = parts_.stepWork(m);
-        partial[4 * std::size_t(i)] = bars != 0 ? layerDamping_[m] + bars : layerDamping_[m];
-    }
-    addBySlot(partial, 4, 1, preSlot_,
-              [&](std::size_t k) { return -f_[pre_.dim[k]][pre_.node[k]] * pre_.weight[k] * centred; });
-    const std::vector<double>& fm = f_[meas_.dim];
-    addBySlot(partial, 4, 2, supportSlot_, [&](std::size_t k) { return fm[(*support_)[k]]; });
-    addBySlot(partial, 4, 3, loadedSlot_, [&](std::size_t k) { return fm[(*loaded_)[k]]; });
-    const std::vector<double> sums = gatherLayerSums(commOf(lat_), partial, 4);
-    dampingWork_ += sums[0];
-    externalWork_ += sums[1];
+        return bars != 0 ? layerDamping_[m] + bars : layerDamping_[m];
+    });
+    dampingWork_ += sums.damping;
+    externalWork_ += sums.external;
     if (step_ % recordEvery_ == 0) {  // the record's state n was its interval's last: a new interval
         supportCell_.restart(), loadedCell_.restart();
     } else {
-        supportCell_.add((0.0 + meas_.sense() * sums[2]) / meas_.area);  // = supportStress() of state n, bit for bit
-        loadedCell_.add((0.0 - meas_.sense() * sums[3]) / meas_.area);
+        supportCell_.add((0.0 + meas_.sense() * sums.support) / meas_.area);  // = supportStress() of state n, bit for bit
+        loadedCell_.add((0.0 - meas_.sense() * sums.loaded) / meas_.area);
     }
     pre_.follow(Unext, Unow, dt_, u_, v_);
     exchangeHalo(lat_, u_);  // the neighbours' layers next to mine, moved by them
@@ -172,11 +142,7 @@ Checkpoint Simulation::checkpoint() const {
 
 void Simulation::restore(const Checkpoint& c) {
     if (lat_.isSlab()) throw std::invalid_argument("restarts of a run split over MPI ranks are not supported");
-    const std::size_t n = std::size_t(lat_.numNodes()), b = std::size_t(lat_.numBars());
-    bool sizesMatch = c.u.x.size() == n && c.v.x.size() == n && c.f.x.size() == n &&
-                      c.softening.size() == lat_.barRows.size();
-    for (const auto& [name, values] : c.bars) sizesMatch = sizesMatch && values.size() == b;
-    if (!sizesMatch) throw std::invalid_argument("the checkpoint is of another specimen (its sizes differ)");
+    checkSizes(c, lat_);
     parts_.setStates(c.parts);
     setLawState(law_, c.bars, c.softening);
     u_ = c.u, v_ = c.v, f_ = c.f;

@@ -24,6 +24,7 @@
 #include "ldem/RunParams.hpp"
 #include "ldem/RunProgress.hpp"
 #include "ldem/Specimen.hpp"
+#include "ldem/StepWork.hpp"
 #include "ldem/Weight.hpp"
 #include "ldem/dynamics/Parts.hpp"
 #include "ldem/laws/Registry.hpp"
@@ -64,7 +65,7 @@ public:
     const Prescribed& prescribed() const { return pre_; }
     const Measures& measures() const { return meas_; }
     const std::map<std::string, std::vector<std::int32_t>>& groups() const { return groups_; }
-    const std::vector<std::int32_t>& group(const std::string& name) const;  // throws on an unknown name
+    const std::vector<std::int32_t>& group(const std::string& name) const { return nodeGroup(groups_, name); }
     const BarLaws& law() const { return law_; }
     const std::vector<double>& barArray(const std::string& name) const { return lawArray(law_, name); }
     double lawConstant(const std::string& name) const { return ldem::lawConstant(law_, name); }
@@ -132,8 +133,7 @@ private:
     double dt_ = 0, time_ = 0;
     CentralDifference cd_{0, 0};
     std::vector<double> layerDamping_;  // damping work of each node layer in the current step
-    std::vector<std::int32_t> preSlot_, supportSlot_, loadedSlot_;  // owned layer (- ownBegin) of each prescribed DOF's node, support and loaded node; -1 if not owned
-    std::vector<double> stepPartials_;  // finishStep's per-layer sums, kept between steps
+    StepWork stepWork_;  // the step's work and reactions, summed by layer
     double externalWork_ = 0, dampingWork_ = 0;
     RisingWeight weight_;
     LoadCell supportCell_, loadedCell_;  // the support's and the loaded group's stresses (measure())

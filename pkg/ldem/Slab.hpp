@@ -76,6 +76,14 @@ std::array<double, K> nodeSum(const Lattice& lat, AddNode add) {
     });
 }
 
+// The bars and the nodes of the whole lattice, each counted by the rank that owns it (bars first).
+inline std::pair<std::int64_t, std::int64_t> wholeLatticeSize(const Lattice& lat) {
+    const auto owned = lat.ownedBars();
+    std::int64_t nodes = 0;
+    for (int m = lat.ownBegin; m < lat.ownEnd; ++m) nodes += lat.layerNodes(m).second;
+    return {commOf(lat).sum(owned.second - owned.first), commOf(lat).sum(nodes)};
+}
+
 // A node's owned layer less ownBegin (its slot in partial sums of K per owned layer), or -1.
 inline int ownedSlot(const Lattice& lat, std::int32_t node) {
     const int m = lat.layerOfNode(node);

@@ -79,6 +79,17 @@ void validate(const Specimen& s) {
     if (m.control < -1 || m.control >= int(m.probes.size()))
         fail("the controlled probe " + std::to_string(m.control) + " is not one of the " +
              std::to_string(m.probes.size()) + " probes");
+    if (Comm::world().size() > 1 && !s.lattice.isSlab())
+        throw std::invalid_argument("under mpirun, a specimen must be built as this rank's slab (specimenSlab)");
+    for (const std::string& g : {m.support, m.loaded})
+        if (!s.groups.count(g)) throw std::invalid_argument("the specimen's measures name no node group '" + g + "'");
+}
+
+const std::vector<std::int32_t>& nodeGroup(const std::map<std::string, std::vector<std::int32_t>>& groups,
+                                           const std::string& name) {
+    const auto it = groups.find(name);
+    if (it == groups.end()) throw std::invalid_argument("the specimen has no node group '" + name + "'");
+    return it->second;
 }
 
 Specimen specimenSlab(int nx, int ny, int nz, double L0, const Material& m,

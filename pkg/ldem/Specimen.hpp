@@ -76,8 +76,13 @@ Prescribed makePrescribed(std::int64_t numNodes, const std::vector<std::int32_t>
 
 // Throws std::invalid_argument naming what is wrong: a node id out of range,
 // a direction not 0-2, a prescribed DOF listed twice, measures without an
-// area, a gauge length or a driven DOF, a probe on no node.
+// area, a gauge length or a driven DOF, a probe on no node, a measured group
+// the specimen does not have, a whole lattice under mpirun (not this rank's slab).
 void validate(const Specimen& s);
+
+// The group of nodes by its name; throws std::invalid_argument on a name the specimen does not have.
+const std::vector<std::int32_t>& nodeGroup(const std::map<std::string, std::vector<std::int32_t>>& groups,
+                                           const std::string& name);
 
 // The cube of nx x ny x nz modules (LDEM_SPEC section 6): groups "bottom" (the
 // support: z held; x, y held, or on rollers with only the rigid motion pinned)

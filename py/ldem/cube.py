@@ -22,13 +22,14 @@ from . import _core
 from .mincut import cheapest_cut
 
 # Every parameter, declared once in C++ (pkg/ldem/Parameters.hpp): group, name,
-# unit, help, kind, default, domain, choices. CubeTest's fields, `ldem cube`'s
+# unit, help, kind (float, int, choice, or names: some of the choices,
+# comma-separated), default, domain, choices. CubeTest's fields, `ldem cube`'s
 # options, summary.json's "parameters" and a study's case keys all come from it.
 PARAMETERS = _core.parameter_table()
 # The table's defaults by name: a file's specimen's, and what a run made before a
 # parameter was declared ran at.
 TABLE_DEFAULTS = {p["name"]: p["default"] for p in PARAMETERS}
-_KINDS = {"float": float, "int": int, "choice": str}
+_KINDS = {"float": float, "int": int, "choice": str, "names": str}
 
 
 class _CubeTestMethods:
@@ -139,6 +140,8 @@ def _field(p: dict) -> tuple:
     metadata = {"unit": p["unit"], "help": p["help"], "group": p["group"], "domain": p["domain"]}
     if p["choices"]:
         metadata["choices"] = tuple(p["choices"])
+    if p["kind"] == "names":
+        metadata["several"] = True  # some of the choices, comma-separated ("none": not one)
     default = CUBE_DEFAULTS.get(p["name"], p["default"])
     return p["name"], _KINDS[p["kind"]], dataclasses.field(default=default, metadata=metadata)
 

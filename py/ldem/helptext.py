@@ -27,10 +27,10 @@ class ArgumentParser(argparse.ArgumentParser):
 
 def parameter_help(field, note: str = "", each: str = "") -> str:
     """The help of an option of a parameter, a field of ldem.CubeTest: the
-    table's help, unit and domain (choices say theirs), then note."""
+    table's help, unit and domain (one choice says theirs), then note."""
     md = field.metadata
     unit = f" [{md['unit']}]" if md["unit"] else ""
-    domain = "" if "choices" in md else f"; {each}{md['domain']}"
+    domain = "" if "choices" in md and not md.get("several") else f"; {each}{md['domain']}"
     return f"{md['help']}{unit}{domain}{note}".replace("%", "%%")
 
 
@@ -38,8 +38,10 @@ def add_parameter_option(p, field, option: str = "", note: str = "", **kw) -> No
     """The option of one parameter, a field of ldem.CubeTest (its name, type,
     default, unit, help, domain and choices: pkg/ldem/Parameters.hpp's line);
     note: said after the table's help; kw replaces any of argparse's (a
-    study's own default)."""
-    choices = {"choices": field.metadata["choices"]} if "choices" in field.metadata else {}
+    study's own default). Some of the choices (dampings) are one argument,
+    comma-separated, that the core checks."""
+    md = field.metadata
+    choices = {"choices": md["choices"]} if "choices" in md and not md.get("several") else {}
     p.add_argument(option or "--" + field.name.replace("_", "-"),
                    **{"dest": field.name, "type": type(field.default), "default": field.default,
                       "metavar": None if choices else field.name.upper(), "help": parameter_help(field, note),

@@ -246,9 +246,10 @@ def _parameters(data: dict, where: Where, overrides: dict) -> dict:
                         ("a cube-test parameter: a specimen says it with its groups" if k in _CUBE_ONLY
                          else "unknown parameter (see ldem cube --help)"), overridden)
         kind = _PARAMS[k]["kind"]
-        ok = isinstance(v, str) if kind == "choice" else (isinstance(v, (int, float)) and not isinstance(v, bool))
+        named = kind in ("choice", "names")
+        ok = isinstance(v, str) if named else (isinstance(v, (int, float)) and not isinstance(v, bool))
         if not ok or (kind == "int" and not isinstance(v, int)):
-            expected = "one of " + ", ".join(_PARAMS[k]["choices"]) if kind == "choice" else kind
+            expected = _PARAMS[k]["domain"] if named else kind
             raise blame(section, k, f"must be {expected} (got {v!r})", overridden)
         out[k] = float(v) if kind == "float" else v
     for layer in (False, True):  # the file, then --set: the later one's choice of rate stands

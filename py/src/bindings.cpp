@@ -378,7 +378,7 @@ PYBIND11_MODULE(_core, m) {
 #define LDEM_PARAM_NAME(type, member, name, def, unit, domain, help) name,
 #define LDEM_DRIVE_ROW(Type, LIST, X) row("drive", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
 #define LDEM_STOP_ROW(Type, LIST, X) row("stop", Type::name, Type::doc, Type::kChoice, {LIST(LDEM_PARAM_NAME)});
-#define LDEM_DAMPING_ROW(Type, LIST, X) row("damping", Type::name, "", false, {LIST(LDEM_PARAM_NAME)});
+#define LDEM_DAMPING_ROW(Type, LIST, X) row("damping", Type::name, Type::doc, true, {LIST(LDEM_PARAM_NAME)});
         LDEM_DRIVES(LDEM_DRIVE_ROW, _)
         LDEM_DAMPINGS(LDEM_DAMPING_ROW, _)
         LDEM_STOPS(LDEM_STOP_ROW, _)

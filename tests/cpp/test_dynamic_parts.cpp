@@ -8,6 +8,10 @@
 #include <functional>
 #include <vector>
 
+#include "ldem/Loading.hpp"
+#include "ldem/Material.hpp"
+#include "ldem/RunParams.hpp"
+#include "ldem/dynamics/Parts.hpp"
 #include "ldem/dynamics/QuasiStatic.hpp"
 #include "ldem/dynamics/Registry.hpp"
 
@@ -270,6 +274,48 @@ TEST(DynamicParts, EveryRegisteredPartRoundTripsItsState) {
     EXPECT_EQ(drives, int(std::variant_size_v<Drives>));
     EXPECT_EQ(stops, int(std::variant_size_v<StopRules>));
     EXPECT_EQ(dampings, int(std::tuple_size_v<Dampings>));
+}
+
+// The dampings a run names are built, in registry order, and only they: one not
+// named has no state in a checkpoint, no share of D_f or of the time step, no
+// bar forces; its parameters are not read (zeta_high of bar dashpots not named).
+TEST(DynamicParts, OnlyTheDampingsNamedAreBuilt) {
+    const double omega1 = 800, omegaMax = 1e5;
+    const PartsSetup setup{omega1, omegaMax, 10, 3, 0.1, false};
+    RunParams run;
+    const auto parts = [&](const std::string& names) {
+        run.dampings = dampingsNamed(names);
+        return Parts(Material{}, LoadingParams{}, run, setup);
+    };
+    const auto dampingNamesOf = [](const Parts& p) {
+        std::vector<std::string> n;
+        for (const std::string& name : p.names())
+            if (name.rfind("damping_", 0) == 0) n.push_back(name);
+        return n;
+    };
+    const Field3 v(10);
+    Parts both = parts("bar_dashpots,mass"), mass = parts("mass"), bars = parts("bar_dashpots"), none = parts("none");
+    EXPECT_EQ(dampingNamesOf(both), (std::vector<std::string>{"damping_mass", "damping_bar_dashpots"}));
+    EXPECT_EQ(dampingNamesOf(mass), std::vector<std::string>{"damping_mass"});
+    EXPECT_EQ(dampingNamesOf(bars), std::vector<std::string>{"damping_bar_dashpots"});
+    EXPECT_TRUE(dampingNamesOf(none).empty());
+    const double Df = massDampingCoefficient(run.zeta, omega1), factor = dampedStepFactor(run.zetaHigh);
+    EXPECT_TRUE(sameBits(both.dampingCoefficient(), Df) && sameBits(both.stepFactor(), factor));
+    EXPECT_TRUE(sameBits(mass.dampingCoefficient(), Df) && sameBits(mass.stepFactor(), 1.0));
+    EXPECT_TRUE(sameBits(bars.dampingCoefficient(), 0.0) && sameBits(bars.stepFactor(), factor));
+    EXPECT_TRUE(both.barPass(v).state && bars.barPass(v).state);
+    EXPECT_FALSE(mass.barPass(v).state || none.barPass(v).state);
+    // No damping: the node update is central differences undamped, bit for bit.
+    const CentralDifference cd = none.nodeUpdate(kDt), want(kDt, 0.0);
+    EXPECT_TRUE(sameBits(cd.a, want.a) && sameBits(cd.b, want.b) && sameBits(cd.Df, 0.0) && !cd.mean);
+    EXPECT_TRUE(sameBits(none.stepWork(0), 0.0) && sameBits(none.closingWork(0), 0.0));
+    // A checkpoint of one set of dampings is refused by another, naming dampings.
+    try {
+        mass.setStates(both.states());
+        FAIL() << "a checkpoint of other dampings was taken";
+    } catch (const std::invalid_argument& e) {
+        EXPECT_NE(std::string(e.what()).find("dampings"), std::string::npos) << e.what();
+    }
 }
 
 TEST(DirectDynamicParts, TheQuasiStaticFlagRoundTripsItsPeakRecord) {

@@ -14,7 +14,7 @@ using namespace ldem;
 
 TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
     const auto& table = cubeTestParameters();
-    ASSERT_EQ(table.size(), 52u);  // 2 geometry + 13 material + 16 loading + 21 run
+    ASSERT_EQ(table.size(), 53u);  // 2 geometry + 13 material + 16 loading + 22 run
     std::set<std::string> names;
     const CubeTestParams defaults;
     for (const ParamInfo& p : table) {
@@ -26,6 +26,9 @@ TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
             EXPECT_GE(p.domain.names.size(), 2u) << p.name;
             const auto& d = std::get<std::string>(p.defaultValue);
             EXPECT_NE(std::find(p.domain.names.begin(), p.domain.names.end(), d), p.domain.names.end()) << p.name;
+        } else if (p.kind == "names") {  // some of the choices: its default read back is itself
+            const auto& d = std::get<std::string>(p.defaultValue);
+            EXPECT_EQ(p.domain.namesOf(p.domain.setOf(p.name, d)), d) << p.name;
         } else {
             const double x = p.kind == "float" ? std::get<double>(p.defaultValue)
                                                : double(std::get<std::int64_t>(p.defaultValue));
@@ -39,6 +42,37 @@ TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
     EXPECT_EQ(defaults.material.epsP, 6.3e-5);
     EXPECT_EQ(defaults.material.ca, 0.1385);
     EXPECT_EQ(defaults.run.zeta, 0.02);
+    // Every registered damping applied, as before they were chosen by name.
+    EXPECT_EQ(getParameter(defaults, "dampings"), ParamValue(std::string("mass,bar_dashpots")));
+    EXPECT_EQ(std::uint64_t(defaults.run.dampings), (std::uint64_t(1) << dampingNames().size()) - 1);
+}
+
+// dampings: some of the registered dampings, comma-separated in any order and
+// read back in the registry's, or none; a name it does not know, one given twice or
+// none beside another is one line naming the parameter and what it expects.
+TEST(Parameters, TheDampingsAreSomeOfTheRegisteredNames) {
+    CubeTestParams p;
+    const auto value = [&](const std::string& names) {
+        try {
+            setParameter(p, "dampings", names);
+        } catch (const std::invalid_argument& e) {
+            return std::string(e.what());
+        }
+        return std::get<std::string>(getParameter(p, "dampings"));
+    };
+    EXPECT_EQ(value("mass"), "mass");
+    EXPECT_EQ(value("bar_dashpots, mass"), "mass,bar_dashpots");
+    EXPECT_EQ(value("none"), "none");
+    EXPECT_EQ(std::uint64_t(p.run.dampings), 0u);
+    const std::string expected = " (expected some of mass, bar_dashpots, separated by commas, or none)";
+    EXPECT_EQ(value("viscous"), "unknown dampings 'viscous'" + expected);
+    EXPECT_EQ(value("mass,viscous"), "unknown dampings 'viscous' in 'mass,viscous'" + expected);
+    EXPECT_EQ(value("mass,"), "unknown dampings '' in 'mass,'" + expected);
+    EXPECT_EQ(value(""), "unknown dampings ''" + expected);
+    EXPECT_EQ(value("mass,mass"), "dampings 'mass,mass' names mass twice" + expected);
+    EXPECT_EQ(value("none,mass"), "dampings 'none,mass': none stands alone" + expected);
+    EXPECT_EQ(std::uint64_t(p.run.dampings), 0u);  // a refused value leaves the last one
+    EXPECT_EQ(dampingsNamed("bar_dashpots"), DampingSet(2));
 }
 
 TEST(Parameters, SetAndGetByNameReachTheMembers) {

@@ -161,8 +161,8 @@ TEST(RelativeDamping, RunIsBalancedBitIdenticalBeforeTheLossAndAcrossThreads) {
     const RunSummary sr = r.run([&](const CurvePoint& p) { return rowsRel.push_back(p), true; });
     ASSERT_TRUE(sr.loadLoss.reached());
     ASSERT_EQ(sr.loadLoss.step, sa.loadLoss.step);
-    EXPECT_TRUE(std::get<MassDamping>(r.parts().dampings()).switched());
-    EXPECT_FALSE(std::get<MassDamping>(a.parts().dampings()).switched());
+    EXPECT_TRUE(r.parts().damping<MassDamping>()->switched());
+    EXPECT_FALSE(a.parts().damping<MassDamping>()->switched());
     std::size_t i = 0;
     for (; i < rowsAbs.size() && i < rowsRel.size() && rowsRel[i].step <= sr.loadLoss.step; ++i) {
         EXPECT_TRUE(sameBits(rowsAbs[i].stress, rowsRel[i].stress)) << i;
@@ -204,7 +204,7 @@ TEST(RelativeDamping, CheckpointRoundTrip) {
     ASSERT_EQ(after, 3);
     Simulation second = cube(true, 1, finalStrain);
     second.restore(c);
-    EXPECT_TRUE(std::get<MassDamping>(second.parts().dampings()).switched());
+    EXPECT_TRUE(second.parts().damping<MassDamping>()->switched());
     const RunSummary got = second.run();
     EXPECT_TRUE(sameBits(want.fractureEnergy, got.fractureEnergy));
     EXPECT_TRUE(sameBits(want.energyBalanceError, got.energyBalanceError));
@@ -225,7 +225,7 @@ TEST(RelativeDamping, TheAdaptiveDriveBoundsInertiaAlone) {
     Simulation abs(cubeTestSpecimen(4, 4, 4, 0.02, m, lp), m, lp, rp);
     const AdaptiveDrive::Limits& lr = std::get<AdaptiveTailDrive>(rel.parts().drive()).adaptive().limits();
     const AdaptiveDrive::Limits& la = std::get<AdaptiveTailDrive>(abs.parts().drive()).adaptive().limits();
-    const MassDamping& mass = std::get<MassDamping>(rel.parts().dampings());
+    const MassDamping& mass = *rel.parts().damping<MassDamping>();
     EXPECT_EQ(lr.dampingT, 0.0);
     EXPECT_GT(la.dampingT, 0.0);
     EXPECT_NEAR(lr.column, la.column * (1 + mass.coefficient() * mass.filterTime()), 1e-12 * lr.column);

@@ -20,6 +20,10 @@ BAD_INPUT = [
     (["--threads", "99999999999"], "threads is out of range"),
     (["--Gf-cv", "-0.1"], "Gf_cv must be in [0, 10] (got -0.1)"),
     (["--load", "shear"], "invalid choice"),
+    (["--tail-drive", "bogus"], "invalid choice: 'bogus'"),
+    (["--dampings", "viscous"], "unknown dampings 'viscous' (expected some of mass, bar_dashpots, separated by "
+                                "commas, or none)"),
+    (["--dampings", "mass,mass"], "dampings 'mass,mass' names mass twice"),
     (["--Gf-draw", "cell"], "invalid choice"),
     (["--E", "abc"], "invalid float value"),
     (["--L0", "0"], "L0 must be > 0 (got 0 m)"),

@@ -203,7 +203,7 @@ def test_cube_test_fields_are_the_parameter_table():
     for f, p in zip(fields, table):
         assert f.default == CUBE_DEFAULTS.get(p["name"], p["default"])
         assert f.metadata["unit"] == p["unit"] and f.metadata["help"] == p["help"]
-        assert f.type is {"float": float, "int": int, "choice": str}[p["kind"]]
+        assert f.type is {"float": float, "int": int, "choice": str, "names": str}[p["kind"]]
         assert f.metadata.get("choices", ()) == tuple(p["choices"])
     ldem.CubeTest().params()  # the cube's own defaults are valid
     params = ldem.CubeTest(nu=0.3, load="triangular", seed=4, Gf_draw="module").params()

@@ -39,6 +39,8 @@ inline double dampedStepFactor(double zeta) { return std::sqrt(1.0 + zeta * zeta
 class BarDashpots {
 public:
     static constexpr const char* name = "bar_dashpots";
+    static constexpr const char* doc = "dashpots in the bars past their elastic branch while in compression, "
+                                       "zeta_high on the highest mode";
     struct Params {
         LDEM_BAR_DASHPOT_PARAMETERS(LDEM_DECLARE_MEMBER)
     };

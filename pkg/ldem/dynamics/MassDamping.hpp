@@ -47,6 +47,8 @@ inline double relativeDampingShare(double omega, double tau) {
 class MassDamping {
 public:
     static constexpr const char* name = "mass";
+    static constexpr const char* doc = "-D_f m v on every node, D_f = 2 zeta omega_1; tail_damping relative: on v "
+                                       "less its mean velocity from the load loss on";
     struct Params {
         LDEM_MASS_DAMPING_PARAMETERS(LDEM_DECLARE_MEMBER)
     };

@@ -21,9 +21,15 @@ LDEM_DAMPINGS(LDEM_PARAMS_OF, RunParams)
 LDEM_STOPS(LDEM_PARAMS_OF, RunParams)
 #undef LDEM_PARAMS_OF
 
-template <class... D>
-std::tuple<D...> makeDampings(const std::tuple<D...>*, const RunParams& run, const DampingSetup& s) {
-    return {D(paramsOf(run, static_cast<const D*>(nullptr)), s)...};
+// The dampings run.dampings names (bit i: the registry's i-th), built; the others left empty.
+BuiltDampings makeDampings(const RunParams& run, const DampingSetup& s) {
+    BuiltDampings built;
+    std::size_t i = 0;
+    forEachPartType(static_cast<const Dampings*>(nullptr), [&](auto* type) {
+        using D = std::remove_pointer_t<decltype(type)>;
+        if (std::uint64_t(run.dampings) >> i++ & 1) std::get<std::optional<D>>(built).emplace(paramsOf(run, type), s);
+    });
+    return built;
 }
 
 template <class Part>
@@ -42,7 +48,7 @@ LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const Run
 }
 
 Parts::Parts(const Material& m, const LoadingParams& load, const RunParams& run, const PartsSetup& s)
-    : dampings_(makeDampings(static_cast<const Dampings*>(nullptr), run, {s.omega1, s.omegaMax, s.bars, s.layers})),
+    : dampings_(makeDampings(run, {s.omega1, s.omegaMax, s.bars, s.layers})),
       omega1_(s.omega1) {
     const double pi = 3.14159265358979323846;
     splitWindow_ = run.splitWindow > 0 ? run.splitWindow : 2 * (2 * pi / s.omega1);
@@ -53,7 +59,7 @@ Parts::Parts(const Material& m, const LoadingParams& load, const RunParams& run,
         LDEM_DRIVE_PARAMETERS(LDEM_COPY_MEMBER)
         LDEM_SPEEDUP_PARAMETERS(LDEM_COPY_MEMBER)
     }
-    std::apply([&](const auto&... damping) { d.filterTime = std::max({0.0, damping.lag()...}); }, dampings_);
+    eachDamping([&](const auto& damping) { d.filterTime = std::max(d.filterTime, damping.lag()); });
     // The drive chosen: tail_drive's, or under opening control the one that is no choice (the servo);
     // each drive checks its parameters, and the one chosen may hand over to another (select).
     std::string chosen = driveNames().at(std::size_t(load.tailDrive)), built;
@@ -95,7 +101,7 @@ void Parts::record(const CurvePoint& p, RunSummary& s, const Field3& v, const st
     const bool lossBefore = s.loadLoss.reached();
     StopRecord sr{p, s, loadLoss_.record(p, s), facesJoined};
     std::visit([&](auto& d) { d.record(DriveRecord{p, s, !lossBefore && s.loadLoss.reached(), dt}); }, drive_);
-    std::apply([&](auto&... d) { (d.record(DampingRecord{s, v}), ...); }, dampings_);
+    eachDamping([&](auto& d) { d.record(DampingRecord{s, v}); });
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.record(sr); }, r);
     kineticAtPeak_.record(p);
     s.kineticOverWorkAtPeak = kineticAtPeak_.ratio(), s.quasiStaticFlagged = kineticAtPeak_.flagged();
@@ -112,7 +118,7 @@ PartStates Parts::states() const {
     s.push_back(std::visit([](const auto& d) { return stateOf("drive", d); }, drive_));
     s.emplace_back("test_load_loss", loadLoss_.state());
     for (const StopRules& r : stops_) s.push_back(std::visit([](const auto& x) { return stateOf("stop", x); }, r));
-    std::apply([&](const auto&... d) { (s.push_back(stateOf("damping", d)), ...); }, dampings_);
+    eachDamping([&](const auto& d) { s.push_back(stateOf("damping", d)); });
     s.emplace_back("quasi_static", kineticAtPeak_.state());
     return s;
 }
@@ -128,12 +134,12 @@ void Parts::setStates(const PartStates& saved) {
     for (const auto& [name, state] : saved) savedNames.push_back(name);
     if (savedNames != names())
         throw std::invalid_argument("the checkpoint is of another set-up (its dynamic parts differ: tail_drive, "
-                                    "stop_at, opening control)");
+                                    "stop_at, dampings, opening control)");
     std::size_t k = 0;  // in states()' order
     std::visit([&](auto& d) { d.setState(saved[k++].second); }, drive_);
     loadLoss_.setState(saved[k++].second);
     for (StopRules& r : stops_) std::visit([&](auto& x) { x.setState(saved[k++].second); }, r);
-    std::apply([&](auto&... d) { (d.setState(saved[k++].second), ...); }, dampings_);
+    eachDamping([&](auto& d) { d.setState(saved[k++].second); });
     kineticAtPeak_.setState(saved[k++].second);
 }
 

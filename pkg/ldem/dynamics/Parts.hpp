@@ -1,5 +1,5 @@
 // A run's dynamic parts, built by name from the registry (Registry.hpp) and
-// stepped in order: the dampings (all of them), the drive (tail_drive's, or the
+// stepped in order: the dampings (those dampings names), the drive (tail_drive's, or the
 // specimen's servo), the load-loss test, the stop rules (those in every run and
 // stop_at's) and the quasi-static guard (QuasiStatic.hpp: it refuses a drive
 // too fast or too slow at set-up, and flags K/W at the peak). At a record the
@@ -9,6 +9,7 @@
 // (drive_adaptive, test_load_loss, stop_separation, damping_mass, quasi_static).
 #pragma once
 #include <functional>
+#include <optional>
 #include <tuple>
 #include <string>
 #include <utility>
@@ -37,6 +38,11 @@ LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const Run
 
 using PartStates = std::vector<std::pair<std::string, std::vector<double>>>;
 
+// The dampings of a run: each registered one, built if dampings names it.
+template <class... D>
+std::tuple<std::optional<D>...> optionalEach(const std::tuple<D...>*);
+using BuiltDampings = decltype(optionalEach(static_cast<const Dampings*>(nullptr)));
+
 class Parts {
 public:
     Parts() = default;
@@ -44,33 +50,38 @@ public:
     // The run's set-up is complete: every drive and stop rule is told it, the guard checks the drive.
     void setUp(const RunSetup& r);
 
-    // The dampings: their share of the stable time step, their node update from the undamped
+    // The dampings built: their share of the stable time step, their node update from the undamped
     // one, the bar forces of the one that has them (or none), the work of bar layer m's in this step.
+    // A damping not built is skipped: it costs a test per call, none per bar or node.
     double stepFactor() const {
-        return std::apply([](const auto&... d) { return (1.0 * ... * d.stepFactor()); }, dampings_);
+        double f = 1.0;
+        eachDamping([&](const auto& d) { f *= d.stepFactor(); });
+        return f;
     }
     CentralDifference nodeUpdate(double dt) {
-        return std::apply([&](auto&... d) {
-            CentralDifference cd(dt, 0.0);
-            ((cd = d.nodeUpdate(cd)), ...);
-            return cd;
-        }, dampings_);
+        CentralDifference cd(dt, 0.0);
+        eachDamping([&](auto& d) { cd = d.nodeUpdate(cd); });
+        return cd;
     }
     DashpotPass barPass(const Field3& v) {  // one damping at most has bar forces
-        return std::apply([&](auto&... d) {
-            DashpotPass pass;
-            ((pass = pass.state ? pass : d.barPass(v)), ...);
-            return pass;
-        }, dampings_);
+        DashpotPass pass;
+        eachDamping([&](auto& d) { pass = pass.state ? pass : d.barPass(v); });
+        return pass;
     }
     double stepWork(int m) const {
-        return std::apply([&](const auto&... d) { return (0.0 + ... + d.stepWork(m)); }, dampings_);
+        double w = 0.0;
+        eachDamping([&](const auto& d) { w += d.stepWork(m); });
+        return w;
     }
     double closingWork(int m) const {
-        return std::apply([&](const auto&... d) { return (0.0 + ... + d.closingWork(m)); }, dampings_);
+        double w = 0.0;
+        eachDamping([&](const auto& d) { w += d.closingWork(m); });
+        return w;
     }
     double dampingCoefficient() const {  // D_f [1/s]
-        return std::apply([](const auto&... d) { return (0.0 + ... + d.coefficient()); }, dampings_);
+        double Df = 0.0;
+        eachDamping([&](const auto& d) { Df += d.coefficient(); });
+        return Df;
     }
     double splitWindow() const { return splitWindow_; }
 
@@ -96,10 +107,24 @@ public:
     std::vector<std::string> names() const;
 
     const Drives& drive() const { return drive_; }
-    const Dampings& dampings() const { return dampings_; }
+    template <class D>
+    const D* damping() const {  // the damping of type D, or nullptr where dampings did not name it
+        const std::optional<D>& d = std::get<std::optional<D>>(dampings_);
+        return d ? &*d : nullptr;
+    }
 
 private:
-    Dampings dampings_;
+    // f(d) on each damping built, in registry order.
+    template <class F>
+    void eachDamping(F f) {
+        std::apply([&](auto&... d) { ((d ? f(*d) : void()), ...); }, dampings_);
+    }
+    template <class F>
+    void eachDamping(F f) const {
+        std::apply([&](const auto&... d) { ((d ? f(*d) : void()), ...); }, dampings_);
+    }
+
+    BuiltDampings dampings_;
     Drives drive_;
     LoadLossDetector loadLoss_;
     std::vector<StopRules> stops_;

@@ -2,7 +2,8 @@
 // rule, one line each, P(Type, its parameter list, X). A new part is its header
 // in this folder and its line here; its parameters join its group's
 // (Loading.hpp, RunParams.hpp), a drive's or a stop rule's name the choices of
-// tail_drive or stop_at (driveNames, stopNames), and Parts.hpp builds it by
+// tail_drive or stop_at (driveNames, stopNames), a damping's those of dampings
+// (dampingNames: a run applies the ones it names), and Parts.hpp builds it by
 // name. The checks below run at compile time.
 #pragma once
 #include <array>
@@ -55,7 +56,7 @@ template <class Void, class... Part>
 using TupleOf = std::tuple<Part...>;
 using Drives = VariantOf<void LDEM_DRIVES(LDEM_PART_TYPE, _)>;
 using StopRules = VariantOf<void LDEM_STOPS(LDEM_PART_TYPE, _)>;
-using Dampings = TupleOf<void LDEM_DAMPINGS(LDEM_PART_TYPE, _)>;  // every one applied, in this order
+using Dampings = TupleOf<void LDEM_DAMPINGS(LDEM_PART_TYPE, _)>;  // those named in dampings applied, in this order
 
 // f(static_cast<Part*>(nullptr)) for every type of a variant or a tuple, in registry order.
 template <template <class...> class List, class... Part, class F>
@@ -101,6 +102,8 @@ constexpr bool isStop() {
 }
 template <class D>
 constexpr bool isDamping() {
+    static_assert(std::is_same_v<decltype(D::doc), const char* const>, "a damping's doc: dampings' help");
+    static_assert(std::string_view(D::name) != "none", "none is no damping (dampings)");
     static_assert(std::is_constructible_v<D, const typename D::Params&, const DampingSetup&>, "D(Params, DampingSetup)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().stepFactor()), double>, "stepFactor()");
     static_assert(std::is_same_v<decltype(std::declval<D&>().nodeUpdate(CentralDifference(0, 0))), CentralDifference>,
@@ -133,5 +136,6 @@ static_assert(allStops(static_cast<const StopRules*>(nullptr)) &&
               namesAreUnique(static_cast<const StopRules*>(nullptr)), "two stop rules share a name (or one has none)");
 static_assert(allDampings(static_cast<const Dampings*>(nullptr)) &&
               namesAreUnique(static_cast<const Dampings*>(nullptr)), "two dampings share a name (or one has none)");
+static_assert(std::tuple_size_v<Dampings> <= 8, "DampingSet holds a bit per damping: 8 at most");
 
 }  // namespace ldem

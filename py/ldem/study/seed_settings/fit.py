@@ -35,7 +35,8 @@ def fit_overrides(name: str, value) -> Callable[[float], dict]:
     if name not in FIELDS:
         raise ValueError(f"--fit {name}: not a parameter of ldem cube --help")
     default = getattr(DEFAULT, name)
-    if isinstance(default, str) and value not in FIELDS[name].metadata.get("choices", (value,)):
+    md = FIELDS[name].metadata
+    if isinstance(default, str) and not md.get("several") and value not in md.get("choices", (value,)):
         raise ValueError(f"{name}: '{value}' is not one of {', '.join(FIELDS[name].metadata['choices'])}")
     return fixed(**{name: type(default)(value)})
 
