@@ -16,9 +16,13 @@ double meanLimitStrain(const Material& m, double L0) {
     return m.epsP * m.GfMean / brittleFractureEnergy(m, L0, false);  // eps_r / eps_p = G_f / G_b
 }
 
-void checkRelations(const Material& m, const LoadingParams& l, const RunParams&, double L0) {
+void checkRelations(const Material& m, const LoadingParams& l, const RunParams& r, double L0) {
     std::ostringstream msg;
     msg.precision(3);
+    // The relative tail re-centres the mass damping's -D_f m v: with no mass damping it would act on nothing.
+    if (r.tailDampingRelative && !(std::uint64_t(r.dampings) & std::uint64_t(dampingsNamed("mass"))))
+        throw std::invalid_argument("tail_damping relative re-centres the mass damping, which dampings does not "
+                                    "name: add mass to dampings, or leave tail_damping absolute");
     const double Gb = brittleFractureEnergy(m, L0, true), Gn = brittleFractureEnergy(m, L0, false);
     if (m.GfCV == 0 && m.GfMean < std::min(Gb, Gn)) {
         msg << "Gf_mean " << m.GfMean << " N/m (the same in every bar, Gf_cv 0) makes every bar perfectly brittle: "

@@ -24,6 +24,8 @@ BAD_INPUT = [
     (["--dampings", "viscous"], "unknown dampings 'viscous' (expected some of mass, bar_dashpots, separated by "
                                 "commas, or none)"),
     (["--dampings", "mass,mass"], "dampings 'mass,mass' names mass twice"),
+    (["--dampings", "bar_dashpots", "--tail-damping", "relative"],
+     "tail_damping relative re-centres the mass damping, which dampings does not name"),
     (["--Gf-draw", "cell"], "invalid choice"),
     (["--E", "abc"], "invalid float value"),
     (["--L0", "0"], "L0 must be > 0 (got 0 m)"),
