@@ -221,7 +221,7 @@ def test_core_api_has_docstrings_keywords_and_reprs():
     m = _core.Material(E=3e10, nu=0.2, Gf_draw="module")
     assert (m.E, m.nu, m.Gf_draw, m.rho) == (3e10, 0.2, "module", 2400.0)
     assert repr(m).startswith("Material(E=30000000000.0, nu=0.2, rho=2400.0,") and "Gf_draw='module'" in repr(m)
-    assert repr(_core.RunParams(seed=3)).startswith("RunParams(seed=3, gravity=0.0, zeta=0.02,")
+    assert repr(_core.RunParams(seed=3)).startswith("RunParams(seed=3, gravity=0.0, dampings='mass,bar_dashpots', zeta=0.02,")
     with pytest.raises(ValueError, match="unknown parameter 'Young'"):
         _core.Material(Young=1.0)
     assert "Poisson's ratio; in (0, 0.5)" in _core.Material.nu.__doc__
