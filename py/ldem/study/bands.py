@@ -1,4 +1,4 @@
-"""An input band (issue 70): what a prediction's unmeasured inputs may be, and
+"""An input band: what a prediction's unmeasured inputs may be, and
 the 5-95 % band of its answer over them and over the lattice's seeds.
 
 - Each input is a normal distribution of a stated mean, coefficient of
@@ -27,7 +27,7 @@ from typing import Dict, List, Sequence
 
 import numpy as np
 
-MIN_POINTS = 12  # the design's points at least (issue 70)
+MIN_POINTS = 12  # the design's points at least: fewer strata leave the 5-95 % tails unsampled
 QUANTILES = (0.05, 0.95)
 
 

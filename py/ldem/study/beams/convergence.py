@@ -1,5 +1,5 @@
-"""The peak's convergence with the module on the Grégoire et al. (2013) beams
-(issue 70 item 3), whence the module rule (ldem.module_rule): the concrete
+"""The peak's convergence with the module on the Grégoire et al. (2013) beams,
+whence the module rule (ldem.module_rule): the concrete
 fitted on the half-notched D = 50 mm beam at L0 = 5 mm (transfer/on_D50_n0.5/
 fit.json), unchanged at every module, each beam as the transfer runs it
 (whole_curves.WholeCurve: the servo on its clip gauge) but stopped at STOP

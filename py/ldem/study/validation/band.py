@@ -1,4 +1,4 @@
-"""The input band of a blind prediction (issue 70; `ldem study validation
+"""The input band of a blind prediction (`ldem study validation
 NAME --band`, ldem.study.validation.predict_band): the inputs the laboratory
 did not measure, or measured with a scatter, drawn by a Latin hypercube
 (ldem.study.bands), each point calibrated by the procedure of
