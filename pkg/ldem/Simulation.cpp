@@ -91,6 +91,13 @@ CurvePoint Simulation::measure() const {
     return p;
 }
 
+template <class AfterLayer>
+void Simulation::layered(AfterLayer afterLayer) {
+    std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, law.rows(), afterLayer, parts_.barPass(v_)); }, law_);
+}
+
+void Simulation::computeForces() { layered([](int) {}); }
+
 void Simulation::step() {
     weighNextStep();
     // One visit of the law per step: the layered pass is compiled for it.

@@ -44,7 +44,7 @@ public:
 
     void step();  // one step, forces at x(n) then x(n+1), in one pass over the lattice
     // The same step in two halves, to measure() state n in between: bit-identical results.
-    void computeForces() { layered([](int) {}); }
+    void computeForces();
     CurvePoint measure() const;
     void advance();
 
@@ -103,11 +103,9 @@ public:
 private:
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
     // The layered pass with the law's rows and the dampings' bar forces; afterLayer(m) as in layeredForces.
+    // In Simulation.cpp only: the kernel needs ldemcore's -fno-math-errno to vectorize its square roots.
     template <class AfterLayer>
-    void layered(AfterLayer afterLayer) {
-        std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, law.rows(), afterLayer, parts_.barPass(v_)); },
-                   law_);
-    }
+    void layered(AfterLayer afterLayer);
     double advanceNodes(int m) {  // the owned nodes of layer m; the halo's are moved by their owner
         return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
     }
