@@ -3,11 +3,12 @@
 curve.csv and summary.json (the load-cell records, as written):
 
   (a) after the peak, the rms of the load's distance from its running mean over
-      one fundamental period T1, in % of the peak;
+      one period T of the mode the drive moves (T = 2 pi / omega_d, summary.json's
+      omega_d_rad_s; omega1_rad_s for a run from before it was reported), in % of the peak;
   (b) given a second run of the same specimen at a quarter of the rate, the
       change of the peak and of the fracture energy: at the load loss where
       both runs have one (the cubes, stopped there), else at the same strain;
-  (c) how many periods T1 after the smooth start the peak comes.
+  (c) how many periods T after the smooth start the peak comes.
 
     /usr/bin/python3 dev/criteria.py RUN [QUARTER_RATE_RUN] [--label NAME] [--until STRAIN]
 
@@ -28,6 +29,12 @@ def load(out):
     return {"t": col("time_s"), "F": col("stress_MPa"), "e": col("mean_strain"), "Uf": col("fracture_J"), "s": s}
 
 
+def drive_period(r):
+    """T = 2 pi / omega_d, the period that times the drive (its smooth start, rule (c))."""
+    s = r["s"]
+    return 2 * math.pi / s.get("omega_d_rad_s", s["omega1_rad_s"])
+
+
 def running_mean(t, F, T):
     """The mean of F over [t - T/2, t + T/2] (trapezoids on the records), NaN where the window leaves the curve."""
     m = np.full_like(F, np.nan)
@@ -41,12 +48,12 @@ def running_mean(t, F, T):
 
 
 def residual(r):
-    """T1, the peak's record, and F - its running mean over T1 with the records before the peak masked."""
-    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
+    """T, the peak's record, and F - its running mean over T with the records before the peak masked."""
+    T = drive_period(r)
     ip = int(np.argmax(r["F"]))
-    d = r["F"] - running_mean(r["t"], r["F"], T1)
+    d = r["F"] - running_mean(r["t"], r["F"], T)
     d[:ip] = np.nan
-    return T1, ip, d
+    return T, ip, d
 
 
 def rms_over_peak(r, d, window):
@@ -56,7 +63,7 @@ def rms_over_peak(r, d, window):
 
 
 def ringing(r, until):
-    """(a): rms(F - mean over T1) after the peak, over the peak, to strain `until` (None: the run's end)."""
+    """(a): rms(F - mean over T) after the peak, over the peak, to strain `until` (None: the run's end)."""
     _, _, d = residual(r)
     return rms_over_peak(r, d, r["e"] < until if until else True)
 
@@ -64,19 +71,19 @@ def ringing(r, until):
 def ringing_around_fall(r):
     """(a) before and after the fall from 90 % to 10 % of the peak: over the records whose mean's
     window ends before it, and those whose window starts after it (NaN where there is none)."""
-    T1, ip, d = residual(r)
+    T, ip, d = residual(r)
     t, F = r["t"], r["F"]
     after = np.arange(len(F)) >= ip
     i90, i10 = (np.flatnonzero(after & (F < x * F[ip]))[:1] for x in (0.9, 0.1))
     if not (len(i90) and len(i10)):
         return rms_over_peak(r, d, after), float("nan")
-    return rms_over_peak(r, d, t + T1 / 2 < t[i90[0]]), rms_over_peak(r, d, t - T1 / 2 > t[i10[0]])
+    return rms_over_peak(r, d, t + T / 2 < t[i90[0]]), rms_over_peak(r, d, t - T / 2 > t[i10[0]])
 
 
 def periods_after_start(r):
-    """(c): (t_peak - t_ramp) / T1."""
-    T1 = 2 * math.pi / r["s"]["omega1_rad_s"]
-    return (r["t"][int(np.argmax(r["F"]))] - r["s"]["ramp_time_s"]) / T1
+    """(c): (t_peak - t_ramp) / T."""
+    T = drive_period(r)
+    return (r["t"][int(np.argmax(r["F"]))] - r["s"]["ramp_time_s"]) / T
 
 
 def energy_at(r, strain, at_loss):

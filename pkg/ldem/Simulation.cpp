@@ -34,9 +34,13 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
 
     freq_ = latticeFrequencies(lat_, pre_.mask);
     refuseMechanism(freq_);
-    load_ = drivenLoading(mat_, load_, run_, freq_.omega1, lat_.L0);
-    parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, lat_.numBars(), lat_.numLayers(),
-                                       meas_.gaugeLength, openingControl()});
+    Field3 unitDrive(lat_.numNodes());  // the prescribed DOFs at U = 1
+    for (std::size_t k = 0; k < pre_.node.size(); ++k) unitDrive[pre_.dim[k]][pre_.node[k]] = pre_.weight[k];
+    freq_.omegaDrive = driveFrequency(lat_, pre_.mask, unitDrive, &freq_.driveIterations);
+    if (!(freq_.omegaDrive > 0)) freq_.omegaDrive = freq_.omega1;  // a drive that moves nothing: a held specimen's weight
+    load_ = drivenLoading(mat_, load_, run_, freq_.omegaDrive, lat_.L0);
+    parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, freq_.omegaDrive, lat_.numBars(),
+                                       lat_.numLayers(), meas_.gaugeLength, openingControl()});
     dt_ = chosenTimeStep(run_, stableTimeStepLimit(), parts_.stepFactor(), freq_.omegaMax);
     // A record per eps_p/50 of mean strain at the drive's initial rate: about 100 before the peak.
     const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive().v0 * std::abs(meas_.meanDriveWeight));
