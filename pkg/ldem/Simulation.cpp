@@ -40,7 +40,8 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     if (!(freq_.omegaDrive > 0)) freq_.omegaDrive = freq_.omega1;  // a drive that moves nothing: a held specimen's weight
     load_ = drivenLoading(mat_, load_, run_, freq_.omegaDrive, lat_.L0);
     parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, freq_.omegaDrive, lat_.numBars(),
-                                       lat_.numLayers(), meas_.gaugeLength, openingControl()});
+                                       lat_.numLayers(), std::int64_t(lat_.barRows.size()), lat_.numNodes(),
+                                       meas_.gaugeLength, openingControl()});
     dt_ = chosenTimeStep(run_, stableTimeStepLimit(), parts_.stepFactor(), freq_.omegaMax);
     // A record per eps_p/50 of mean strain at the drive's initial rate: about 100 before the peak.
     const double rowTime = mat_.epsP / 50 * meas_.gaugeLength / (drive().v0 * std::abs(meas_.meanDriveWeight));
@@ -109,18 +110,32 @@ CurvePoint Simulation::measure() const {
     return p;
 }
 
+void Simulation::computeForces() {
+    layered([](int) {});
+    parts_.afterForces(lat_, pre_.mask, u_, v_, f_);
+}
+
 void Simulation::step() {
     weighNextStep();
-    // One visit of the law per step: the layered pass is compiled for it.
-    layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+    if (parts_.deferred()) {  // the dashpots' forces wait for every node's (BarDashpots.hpp: predicted)
+        computeForces();
+        advanceLayers();
+    } else {
+        // One visit of the law per step: the layered pass is compiled for it.
+        layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+    }
     finishStep();
 }
 
 void Simulation::advance() {
     weighNextStep();
+    advanceLayers();
+    finishStep();
+}
+
+void Simulation::advanceLayers() {
 #pragma omp parallel for schedule(static)
     for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
-    finishStep();
 }
 
 void Simulation::finishStep() {

@@ -1,6 +1,6 @@
 // Natural frequencies of the lattice (LDEM_SPEC section 5): the matrix-free
 // Lanczos estimates of omega_1 and omega_max against (i) a dense eigensolver on
-// a stiffness matrix assembled here, bar by bar, independently of the library,
+// a stiffness matrix assembled bar by bar (Assembled.hpp), independently of the library,
 // (ii) the Rayleigh quotient of smooth trial shapes (upper bound on omega_1^2)
 // and (iii) the Gershgorin bound (upper bound on omega_max^2).
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "Assembled.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/laws/Hillerborg.hpp"
@@ -23,31 +24,6 @@
 using namespace ldem;
 
 namespace {
-
-// Full 3N x 3N stiffness: a bar of direction n and stiffness k = EA/L adds
-// k n n^T to the (i,i) and (j,j) blocks and -k n n^T to (i,j), (j,i).
-Eigen::MatrixXd assembleStiffness(const Lattice& lat) {
-    const Eigen::Index N = 3 * lat.numNodes();
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
-    const BarTable t = listBars(lat);
-    const auto x0 = nodePositions(lat);
-    for (std::int64_t b = 0; b < lat.numBars(); ++b) {
-        const auto i = t.n1[b], j = t.n2[b];
-        const double dx = x0[0][j] - x0[0][i], dy = x0[1][j] - x0[1][i], dz = x0[2][j] - x0[2][i];
-        const double L = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double n[3] = {dx / L, dy / L, dz / L};
-        const double k = t.EA[b] / L;
-        for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) {
-                const double v = k * n[a] * n[c];
-                K(3 * i + a, 3 * i + c) += v;
-                K(3 * j + a, 3 * j + c) += v;
-                K(3 * i + a, 3 * j + c) -= v;
-                K(3 * j + a, 3 * i + c) -= v;
-            }
-    }
-    return K;
-}
 
 struct Reduced {
     std::vector<Eigen::Index> dofs;  // free DOFs, as 3 node + d

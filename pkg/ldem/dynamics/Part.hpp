@@ -36,6 +36,8 @@ struct DampingSetup {
     double omega1 = 0, omegaMax = 0;  // [rad/s]
     std::int64_t bars = 0;            // of the lattice (its bar numbers)
     int layers = 0;                   // bar layers
+    std::int64_t rows = 0;            // bar rows
+    std::int64_t nodes = 0;           // of the lattice (its node ids)
 };
 
 // The run's set-up, complete: every drive and stop rule is told it once (setUp), before the first step.

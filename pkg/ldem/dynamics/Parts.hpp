@@ -28,6 +28,8 @@ struct PartsSetup {
     double omegaDrive = 0;            // omega_d [rad/s]: what times the drive (its smooth start, rule (c)'s N)
     std::int64_t bars = 0;            // of the lattice
     int layers = 0;                   // bar layers
+    std::int64_t rows = 0;            // bar rows
+    std::int64_t nodes = 0;           // of the lattice
     double gaugeLength = 0;           // [m]
     bool openingControl = false;      // the specimen has a controlled probe
 };
@@ -64,6 +66,15 @@ public:
             ((pass = pass.state ? pass : d.barPass(v)), ...);
             return pass;
         }, dampings_);
+    }
+    // Whether a damping's bar forces wait for every node's force (then the nodes wait for them), and
+    // those forces, added to f once the force pass gave every node its own.
+    bool deferred() const {
+        return std::apply([](const auto&... d) { return (false || ... || d.deferred()); }, dampings_);
+    }
+    void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                     Field3& f) {
+        std::apply([&](auto&... d) { (d.afterForces(lat, mask, u, v, f), ...); }, dampings_);
     }
     double stepWork(int m) const {
         return std::apply([&](const auto&... d) { return (0.0 + ... + d.stepWork(m)); }, dampings_);
