@@ -7,9 +7,9 @@ fully determined by LDEM_SPEC, no random field to share), damping ratio zeta
 YADE side: everything from tests/reference/ldem_ref.py, the numpy reference
 written from the spec alone: node positions and lumped masses, the bar list
 with EA, L, A_f and eps_r = 2 A_f G_f / (EA eps_p L), the boundary conditions
-and the drive U(t) (1 - cos start over two fundamental periods, README), and
-omega_1, omega_max from the reference's own dense eigen-solve, which give
-dt = 0.4 x 2/omega_max and D_f = 2 zeta omega_1. YADE integrates with its own
+and the drive U(t) (1 - cos start over two periods of the drive's own mode
+omega_d, from the reference's dense solve), and omega_1, omega_max from its own
+dense eigen-solve, which give dt = 0.4 x 2/omega_max and D_f = 2 zeta omega_1. YADE integrates with its own
 NewtonIntegrator and its native Cpm law set up as Hillerborg's triangle
 (ldem.yade.LatticeSpecimen), damped by ldem.yade.ViscousDamping (the spec's
 central-difference damping, which YADE lacks). YADE-side energies: the elastic
@@ -34,9 +34,9 @@ strain, the stress at every step, and the five energies (every
 plots both curves to OUT (default out/yade_crosscheck.png) and exits 1 on a failure.
 
 Measured (defaults: 6^3, triangular, 0.1 1/s at the most-pulled edge, zeta
-0.02, to mean strain 2.6e-4 = 4210 steps: past the peak of 2.315 MPa at 1.50e-4,
-the stress down to 1.14 MPa, 45 bars broken, 0.56 J dissipated): peak 2e-12
-apart, its strain 3e-13, the stress at every step within 1e-11 of the peak,
+0.02, to mean strain 2.6e-4 = 4124 steps: past the peak of 2.315 MPa at 1.47e-4,
+the stress down to 1.14 MPa, 45 bars broken, 0.56 J dissipated): peak 4e-12
+apart, its strain 1e-12, the stress at every step within 2e-11 of the peak,
 the energies within 1e-12 of the external work. That is round-off: the
 reference against itself with an algebraically identical strain formula parts
 by as much (3e-12), and tests/py/test_reference.py bounds whole trajectories
@@ -101,7 +101,7 @@ def reference_specimen(n, L0, load, zeta, strain_rate, dt_safety=0.4):
     w1, wmax = R.frequencies(lat, bc)
     gf = np.full(lat.n_bars, mat.Gf_mean)  # CV 0: every bar E[G_f]
     eps_r, clamped = R.limit_strain(lat.Af, gf, lat.EA, mat.eps_p, lat.L)
-    ramp = 2 * 2 * math.pi / w1  # README: the drive starts over two fundamental periods
+    ramp = 2 * 2 * math.pi / R.drive_frequency(lat, bc)  # the drive starts over two periods of its own mode
     velocity = strain_rate * bc.height
     held = ["".join(a for c, a in enumerate("xyz") if bc.prescribed[i, c]) for i in range(lat.n_nodes)]
     return dict(mat=mat, lat=lat, bc=bc, omega1=w1, omega_max=wmax, eps_r=eps_r, clamped=int(clamped.sum()),

@@ -14,7 +14,13 @@
 // with F_k-1 kept per bar (0 while the bar has none). Exact up to the change
 // of d over a step (checked against the nodes' f_d.(x(k+1) - x(k-1))/2 on the
 // 0.24 m cube on rollers: the two agree to 3e-4 of the work).
+// Read at the predicted velocity (dashpot_velocity predicted), F_k = beta (EA/L) r
+// d.(v~_B - v~_A)/L, v~ = v(n-1/2) + dt/2 f*/m: the force pass keeps each bar's
+// coefficient beta (EA/L) r and adds the closing work (deferDashpot); once every
+// node has f*, predictedDashpots (InternalForces.hpp) adds F_k to the nodes and
+// the opening work s_k F_k dt/2 (s_k still from v(n-1/2): the same bookkeeping).
 #pragma once
+#include <cstdint>
 #include <vector>
 
 #include "ldem/Field3.hpp"
@@ -28,6 +34,10 @@ struct DashpotState {
     std::vector<double> force;    // F of each bar's dashpot at the last step [N]
     std::vector<double> closing;  // per bar layer: the sum of s_k F_k-1 dt/2 in this step [J]
     std::vector<double> opening;  // per bar layer: the sum of s_k F_k dt/2 in this step [J]
+    bool predicted = false;       // read at the predicted velocity: the forces in a second pass
+    std::vector<double> coefficient;  // predicted: per bar, beta (EA/L) r of this step [N s/m]
+    std::vector<std::uint8_t> rows;   // predicted: per bar row, whether some bar of it has a dashpot now
+    Field3 velocity;                  // predicted: v~ of every node at this step [m/s]
 };
 
 // What the force pass needs of them: their state and v(n-1/2); none while state is null.
@@ -49,6 +59,15 @@ inline void addDashpot(double beta, double EA, double invL, double r, double dx,
     force = F;
     const double Fl = F * invL;  // tension pulls A towards B, along +d
     gx += Fl * dx, gy += Fl * dy, gz += Fl * dz;
+}
+
+// The same bar, read at the predicted velocity: its closing work (without dt/2) from
+// v(n-1/2) and its coefficient beta (EA/L) r; its force is predictedDashpots' (0 till then).
+inline void deferDashpot(double beta, double EA, double invL, double r, double dx, double dy, double dz, double dvx,
+                         double dvy, double dvz, double& force, double& coefficient, double& closing) {
+    closing += (dx * dvx + dy * dvy + dz * dvz) * invL * force;
+    force = 0.0;
+    coefficient = beta * EA * invL * r;
 }
 
 }  // namespace ldem

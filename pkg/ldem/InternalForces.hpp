@@ -59,16 +59,18 @@ private:
 // value, and stretch(p) holds its family and pointers by value: the loop's
 // stores to g, kappa and the dashpots' force are doubles, which the compiler
 // must assume may alias doubles reached through a reference, so it re-read
-// them every iteration (as vector gathers and broadcasts).
+// them every iteration (as vector gathers and broadcasts). Returns whether a
+// dashpot read at the predicted velocity acts in the row (its force then waits:
+// predictedDashpots).
 template <class Law, class StretchOf>
-void lawBars(const Law rowLaw, const BarRow& row, int m, double EA, double EAend, double invL, StretchOf stretch,
+bool lawBars(const Law rowLaw, const BarRow& row, int m, double EA, double EAend, double invL, StretchOf stretch,
              const DashpotPass& dash, double* gx, double* gy, double* gz) {
     const std::int64_t n = row.count;
     if (!dash.state) {
 #pragma omp simd
         for (std::int64_t p = 0; p < n; ++p)
             rowLaw(p, (p == 0 || p == n - 1) ? EAend : EA, stretch(p), gx[p], gy[p], gz[p]);
-        return;
+        return false;
     }
     const Field3& v = *dash.v;
     const double *ax = &v.x[row.nodeA], *ay = &v.y[row.nodeA], *az = &v.z[row.nodeA];
@@ -76,6 +78,21 @@ void lawBars(const Law rowLaw, const BarRow& row, int m, double EA, double EAend
     double* force = &dash.state->force[row.first];
     const double beta = dash.state->beta;
     double closing = 0, opening = 0;
+    if (dash.state->predicted) {
+        double* coefficient = &dash.state->coefficient[row.first];
+        double acting = 0;
+#pragma omp simd reduction(+ : closing) reduction(max : acting)
+        for (std::int64_t p = 0; p < n; ++p) {
+            const double EAp = (p == 0 || p == n - 1) ? EAend : EA;
+            const auto s = stretch(p);
+            const double r = rowLaw(p, EAp, s, gx[p], gy[p], gz[p]);
+            deferDashpot(beta, EAp, invL, r, s.dx, s.dy, s.dz, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p], force[p],
+                         coefficient[p], closing);
+            acting = std::max(acting, coefficient[p]);
+        }
+        dash.state->closing[m] += closing * dash.state->halfDt;
+        return acting > 0;
+    }
 #pragma omp simd reduction(+ : closing, opening)
     for (std::int64_t p = 0; p < n; ++p) {
         const double EAp = (p == 0 || p == n - 1) ? EAend : EA;
@@ -86,13 +103,14 @@ void lawBars(const Law rowLaw, const BarRow& row, int m, double EA, double EAend
     }
     dash.state->closing[m] += closing * dash.state->halfDt;
     dash.state->opening[m] += opening * dash.state->halfDt;
+    return false;
 }
 
 // The bars of a row whose path is the law's (laws/BarLaw.hpp: RowPath), from
 // the displacements at their ends; the row moves on to the exact path once a
-// bar is beyond the series.
+// bar is beyond the series. Returns lawBars' answer.
 template <class Law>
-void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, const BarRow& row, int m, double EA,
+bool lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, const BarRow& row, int m, double EA,
             double EAend, const double* ax, const double* ay, const double* az, const double* bx, const double* by,
             const double* bz, const DashpotPass& dash, double* gx, double* gy, double* gz) {
     const std::int64_t n = row.count;
@@ -105,13 +123,12 @@ void lawRow(const Law& rowLaw, std::uint8_t path, const BarFamily fam, const Bar
     }
     rowLaw.setPath(path);
     if (path == kSeriesPath)
-        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
+        return lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
             return seriesStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
         }, dash, gx, gy, gz);
-    else
-        lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
-            return barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
-        }, dash, gx, gy, gz);
+    return lawBars(rowLaw, row, m, EA, EAend, fam.invL, [=](std::int64_t p) {
+        return barStretch(fam, bx[p] - ax[p], by[p] - ay[p], bz[p] - az[p]);
+    }, dash, gx, gy, gz);
 }
 
 // Calls the bar law's row functor (laws/BarLaw.hpp) for every bar of layer m, writing the force
@@ -120,7 +137,9 @@ template <class Law>
 void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers& g, const Law& law,
               const DashpotPass& dash) {
     if (dash.state) dash.state->closing[m] = dash.state->opening[m] = 0.0;
+    std::uint8_t* actingRows = dash.state && dash.state->predicted ? dash.state->rows.data() : nullptr;
     for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
+        if (actingRows) actingRows[r] = 0;
         const BarRow& row = lat.barRows[r];
         const BarFamily fam = lat.families[row.family];  // a copy: the stores to g cannot alias it
         const double *ax = &u.x[row.nodeA], *ay = &u.y[row.nodeA], *az = &u.z[row.nodeA];
@@ -143,8 +162,10 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
             if (excess <= 0) continue;
             path = kSeriesPath;
         }
-        if constexpr (!Law::kElasticOnly)
-            lawRow(rowLaw, path, fam, row, m, EA, EAend, ax, ay, az, bx, by, bz, dash, gx, gy, gz);
+        if constexpr (!Law::kElasticOnly) {
+            const bool deferred = lawRow(rowLaw, path, fam, row, m, EA, EAend, ax, ay, az, bx, by, bz, dash, gx, gy, gz);
+            if (actingRows) actingRows[r] = deferred;
+        }
     }
 }
 
@@ -174,6 +195,15 @@ void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Fiel
             for (int m = m0; m < std::min(m0 + 2, m1); ++m) nodeLayer(lat, m, g, f), afterLayer(m);
     }
 }
+
+// The dashpots read at the predicted velocity (BarDashpot.hpp), once f holds every node's f*
+// (the bars' forces; the weight, the same on both ends of a bar, and the mass damping,
+// D_f dt/2 ~ 1e-6, are left out): v~ = v(n-1/2) + dt/2 f*/m on free DOFs, v on held ones
+// (d.velocity: the owned nodes', then the halo's from their owners);
+// F = coefficient d.(v~_B - v~_A)/L of each bar whose row acts, kept, its opening work added,
+// then added to f. In bar order, on one thread: the same bits for any number of threads.
+void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                       DashpotState& d, Field3& f);
 
 // f = forces of all bars on the nodes at displacement u with the bar law
 // (laws/BarLaw.hpp); updates the law's state (damage) of every bar.

@@ -19,6 +19,21 @@ double dot(const Lattice& lat, const Field3& a, const Field3& b) {
     })[0];
 }
 
+// The diagonal of K: a bar of stiffness k = EA/L along n adds k n_d^2 to DOF d of both its nodes.
+Field3 stiffnessDiagonal(const Lattice& lat) {
+    Field3 k(lat.numNodes());
+    for (const BarRow& row : lat.barRows) {
+        const BarFamily& fam = lat.families[row.family];
+        const double n[3] = {fam.d0[0] / fam.L, fam.d0[1] / fam.L, fam.d0[2] / fam.L};
+        for (int p = 0; p < row.count; ++p) {
+            const double kb = fam.EA * row.shareAt(p) / fam.L;
+            for (const std::int32_t i : {row.nodeA + p, row.nodeB + p})
+                k.x[i] += kb * n[0] * n[0], k.y[i] += kb * n[1] * n[1], k.z[i] += kb * n[2] * n[2];
+        }
+    }
+    return k;
+}
+
 // Number of eigenvalues below x of the symmetric tridiagonal matrix with
 // diagonal a and off-diagonal b (Sturm sequence of the LDL^T pivots).
 int eigenvaluesBelow(const std::vector<double>& a, const std::vector<double>& b, double x) {
@@ -151,6 +166,65 @@ Frequencies latticeFrequencies(const Lattice& lat, const std::vector<std::uint8_
         betaPrev = b;
     }
     return out;
+}
+
+double driveFrequency(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& drive,
+                      int* iterations, int maxIterations, double tolerance) {
+    const std::int64_t n = lat.numNodes();
+    // P = 1/K_ii on the unknowns (the free DOFs of nodes with bars), 0 elsewhere.
+    Field3 P = stiffnessDiagonal(lat);
+    for (std::int64_t i = 0; i < n; ++i) {
+        const bool removed = !(lat.mass[i] > 0);
+        auto inverse = [&](unsigned bit, double& k) { k = (mask[i] & bit) || removed || !(k > 0) ? 0.0 : 1.0 / k; };
+        inverse(1, P.x[i]), inverse(2, P.y[i]), inverse(4, P.z[i]);
+    }
+    BarForceBuffers barWork;
+    auto product = [&](Field3& x, Field3& y) {  // y = K x at the owned nodes
+        exchangeHalo(lat, x);
+        linearStiffnessProduct(lat, x, barWork, y);
+    };
+    auto onUnknowns = [&](Field3& y, double a) {  // y = a y on the unknowns, 0 elsewhere
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            y.x[i] = P.x[i] > 0 ? a * y.x[i] : 0.0, y.y[i] = P.y[i] > 0 ? a * y.y[i] : 0.0,
+            y.z[i] = P.z[i] > 0 ? a * y.z[i] : 0.0;
+    };
+    auto precondition = [&](const Field3& r, Field3& z) {
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i) z.x[i] = P.x[i] * r.x[i], z.y[i] = P.y[i] * r.y[i], z.z[i] = P.z[i] * r.z[i];
+    };
+    Field3 u = drive, r(n), z(n), p(n), q(n);
+    product(u, r);
+    onUnknowns(r, -1.0);  // r = -K_fp u_p, the residual of u_f = 0
+    precondition(r, z);
+    p = z;
+    double rz = dot(lat, r, z);
+    const double r0 = std::sqrt(dot(lat, r, r));
+    int it = 0;
+    InterruptCheck interruptPoint;
+    for (; it < maxIterations && std::sqrt(dot(lat, r, r)) > tolerance * r0; ++it) {
+        interruptPoint();
+        product(p, q);
+        onUnknowns(q, 1.0);
+        const double alpha = rz / dot(lat, p, q);
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            u.x[i] += alpha * p.x[i], u.y[i] += alpha * p.y[i], u.z[i] += alpha * p.z[i],
+            r.x[i] -= alpha * q.x[i], r.y[i] -= alpha * q.y[i], r.z[i] -= alpha * q.z[i];
+        precondition(r, z);
+        const double rzNext = dot(lat, r, z), b = rzNext / rz;
+        rz = rzNext;
+#pragma omp parallel for schedule(static)
+        for (std::int64_t i = 0; i < n; ++i)
+            p.x[i] = z.x[i] + b * p.x[i], p.y[i] = z.y[i] + b * p.y[i], p.z[i] = z.z[i] + b * p.z[i];
+    }
+    if (iterations) *iterations = it;
+    product(u, q);
+    const double uKu = dot(lat, u, q);
+    const double uMu = nodeSum<1>(lat, [&](std::int32_t i, std::array<double, 1>& s) {
+        s[0] += lat.mass[i] * (u.x[i] * u.x[i] + u.y[i] * u.y[i] + u.z[i] * u.z[i]);
+    })[0];
+    return uMu > 0 ? std::sqrt(uKu / uMu) : 0.0;
 }
 
 void refuseMechanism(const Frequencies& f) {

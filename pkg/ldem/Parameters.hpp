@@ -73,12 +73,13 @@
       "vertical strain rate at the most-pulled edge; the drive must move less than eps_p and more than 1e-6 "    \
       "eps_p in one step (dynamics/QuasiStatic.hpp)")                                                           \
     X(double, ratePeriods, "rate_periods", 0.0, "", Domain::atLeast(0),                                      \
-      "rule (c) as the rate: > 0 drives at eps_p omega_1 / (2 pi N), so that the gauge strains by eps_p in N "  \
-      "of the specimen's own fundamental periods, and strain_rate is not used (dynamics/QuasiStatic.hpp); "   \
-      "0, the cube's default: strain_rate; a specimen file's default is 12 unless it gives strain_rate")       \
+      "rule (c) as the rate: > 0 drives at eps_p omega_d / (2 pi N), so that the gauge strains by eps_p in N "  \
+      "periods of the mode the drive moves (omega_d: summary.json's omega_d_rad_s), and strain_rate is not "   \
+      "used (dynamics/QuasiStatic.hpp); 0, the cube's default: strain_rate; a specimen file's default is 12 "  \
+      "unless it gives strain_rate")                                                                           \
     X(double, rampTime, "ramp_time", 0.0, "s", Domain::atLeast(0),                                           \
-      "smooth start of the loading (0: two fundamental periods); at most eps_p / strain_rate: the ramp ends "   \
-      "before the mean strain reaches eps_p / 2, before any bar can crack")
+      "smooth start of the loading (0: two periods 2 pi/omega_d of the mode the drive moves); at most eps_p / " \
+      "strain_rate: the ramp ends before the mean strain reaches eps_p / 2, before any bar can crack")
 
 // The fixed speed-up after the load loss (dynamics/ConstantRateDrive.hpp; the adaptive drive's floor).
 #define LDEM_SPEEDUP_PARAMETERS(X)                                                                           \

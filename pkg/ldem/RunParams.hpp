@@ -19,8 +19,9 @@
     LDEM_STOPS(LDEM_PART_LIST, X)                                                                            \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \
     X(double, dtSafety, "dt_safety", 0.8, "", Domain::openClosed(0, 1),                                      \
-      "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high); without "\
-      "the dashpots (zeta_high 0) keep it at 0.4: above, closing cracks pump energy into the highest modes")  \
+      "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high), or "      \
+      "2/omega_max with dashpot_velocity predicted while zeta_high <= 0.5; without the dashpots (zeta_high 0) "\
+      "keep it at 0.4: above, closing cracks pump energy into the highest modes")                             \
     LDEM_LOAD_LOSS_PARAMETERS(X)                                                                             \
     X(double, energyTolerance, "energy_tolerance", 0.01, "", Domain::positive(),                             \
       "a run whose energy balance error exceeds this is flagged energy_error (and ldem exits 1)")            \

@@ -32,8 +32,13 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
 
     freq_ = latticeFrequencies(lat_, pre_.mask);
     refuseMechanism(freq_);
-    load_ = drivenLoading(mat_, load_, run_, freq_.omega1, lat_.L0);
-    parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, lat_.numBars(), lat_.numLayers(),
+    Field3 unitDrive(lat_.numNodes());  // the prescribed DOFs at U = 1
+    for (std::size_t k = 0; k < pre_.node.size(); ++k) unitDrive[pre_.dim[k]][pre_.node[k]] = pre_.weight[k];
+    freq_.omegaDrive = driveFrequency(lat_, pre_.mask, unitDrive, &freq_.driveIterations);
+    if (!(freq_.omegaDrive > 0)) freq_.omegaDrive = freq_.omega1;  // a drive that moves nothing: a held specimen's weight
+    load_ = drivenLoading(mat_, load_, run_, freq_.omegaDrive, lat_.L0);
+    parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, freq_.omegaDrive, lat_.numBars(),
+                                       lat_.numLayers(), std::int64_t(lat_.barRows.size()), lat_.numNodes(),
                                        meas_.gaugeLength, openingControl()});
     dt_ = chosenTimeStep(run_, stableTimeStepLimit(), parts_.stepFactor(), freq_.omegaMax);
     const double meanSpeed = drive().v0 * std::abs(meas_.meanDriveWeight);
@@ -96,20 +101,32 @@ void Simulation::layered(AfterLayer afterLayer) {
     std::visit([&](auto& law) { layeredForces(lat_, u_, g_, f_, law.rows(), afterLayer, parts_.barPass(v_)); }, law_);
 }
 
-void Simulation::computeForces() { layered([](int) {}); }
+void Simulation::computeForces() {
+    layered([](int) {});
+    parts_.afterForces(lat_, pre_.mask, u_, v_, f_);
+}
 
 void Simulation::step() {
     weighNextStep();
-    // One visit of the law per step: the layered pass is compiled for it.
-    layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+    if (parts_.deferred()) {  // the dashpots' forces wait for every node's (BarDashpots.hpp: predicted)
+        computeForces();
+        advanceLayers();
+    } else {
+        // One visit of the law per step: the layered pass is compiled for it.
+        layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+    }
     finishStep();
 }
 
 void Simulation::advance() {
     weighNextStep();
+    advanceLayers();
+    finishStep();
+}
+
+void Simulation::advanceLayers() {
 #pragma omp parallel for schedule(static)
     for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
-    finishStep();
 }
 
 void Simulation::finishStep() {

@@ -2,8 +2,8 @@
 // DOF, rising over the drive's smooth start t_r as g_z(n) = -g (1 - cos(pi t/t_r))/2,
 // t = n dt. Laid on its supports at once, a specimen would ring in its
 // fundamental by its whole static sag (a beam's load by +-100 N on a 1 kN peak,
-// decaying as 1/(zeta omega_1)); over two periods the ringing left is about
-// 1/((omega_1 t_r/pi)^2 - 1) = 7 % of the sag.
+// decaying as 1/(zeta omega_1)); risen over t_r, the ringing left in a mode omega
+// is about 1/((omega t_r/pi)^2 - 1) of its share of the sag (7 % at two periods).
 // Its work, sum_n m g_n (x(n+1) - x(n-1))/2, is summed by parts:
 // g_N Y_N - sum_n (g_{n+1} - g_n) Y_n with Y_n = sum m (x(n+1) + x(n))/2, the
 // last step's term being weightWork (Integrator.hpp); each change of g puts its

@@ -116,13 +116,13 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
 # and a run whose kinetic energy at the peak is above KINETIC_AT_PEAK_LIMIT of
 # the work is flagged.
 KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
-# Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer fundamental periods is warned.
+# Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer periods of its own mode is warned.
 RATE_PERIODS = _core.RATE_PERIODS
 
 
 def quasi_static(summary) -> dict:
     """The run's loading speed for summary.json, as the core measured it: the
-    drive's step over eps_p, the fundamental periods it takes to strain eps_p
+    drive's step over eps_p, the periods 2 pi/omega_d it takes to strain eps_p
     (rule (c): at least RATE_PERIODS) and the kinetic energy over the external
     work at the record of the largest stress; flagged above KINETIC_AT_PEAK_LIMIT."""
     return {"strain_rate": summary.drive_strain_rate, "drive_step_over_eps_p": summary.drive_step_over_eps_p,
@@ -256,6 +256,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "dt_s": sim.dt,
         "dt_limit_s": sim.dt_limit,
         "omega1_rad_s": sim.omega1,
+        "omega_d_rad_s": sim.omega_d,  # the drive's own mode: its smooth start and rule (c) (Modal.hpp)
         "omega_max_rad_s": sim.omega_max,
         "damping_coefficient_1_s": sim.damping_coefficient,
         "ramp_time_s": sim.ramp_time,

@@ -266,9 +266,9 @@ PYBIND11_MODULE(_core, m) {
         .def_readonly("steps", &RunSummary::steps)
         .def_readonly("drive_step_over_eps_p", &RunSummary::driveStepOverEpsP)
         .def_readonly("drive_periods_to_eps_p", &RunSummary::drivePeriodsToEpsP,
-                      "N of rule (c): the fundamental periods the drive takes to strain eps_p")
+                      "N of rule (c): the periods 2 pi/omega_d the drive takes to strain eps_p")
         .def_readonly("drive_strain_rate", &RunSummary::driveStrainRate,
-                      "the strain rate driven [1/s]: strain_rate, or eps_p omega_1 / (2 pi rate_periods)")
+                      "the strain rate driven [1/s]: strain_rate, or eps_p omega_d / (2 pi rate_periods)")
         .def_readonly("kinetic_over_work_at_peak", &RunSummary::kineticOverWorkAtPeak)
         .def_readonly("quasi_static_flagged", &RunSummary::quasiStaticFlagged)
         .def_readonly("stop_reason", &RunSummary::stopReason);
@@ -344,6 +344,13 @@ PYBIND11_MODULE(_core, m) {
           py::arg("module_mask"),
           "the lattice of the present modules of an nx x ny x nz box: module_mask[i + nx (j + ny k)] != 0 "
           "(empty: all); nodes of no present module keep their ids with mass 0");
+    m.def("lattice_frequencies",
+          [](const Lattice& lat, const std::vector<std::uint8_t>& mask) {
+              const Frequencies f = latticeFrequencies(lat, mask);
+              return py::make_tuple(f.omega1, f.omegaMax);
+          },
+          py::arg("lattice"), py::arg("mask"),
+          "(omega_1, omega_max) [rad/s] of the undamaged lattice with the DOFs of mask held (per node, bit d: DOF d)");
     m.def("expected_node_count", &expectedNodeCount);
     m.def("expected_bar_count", &expectedBarCount);
     m.def("memory_estimate", &memoryEstimate, py::arg("nx"), py::arg("ny"), py::arg("nz"),
@@ -493,6 +500,11 @@ PYBIND11_MODULE(_core, m) {
         .def_property_readonly("dt_limit", &Simulation::stableTimeStepLimit)
         .def_property_readonly("omega1", [](const Simulation& s) { return s.frequencies().omega1; })
         .def_property_readonly("omega_max", [](const Simulation& s) { return s.frequencies().omegaMax; })
+        .def_property_readonly("omega_d", [](const Simulation& s) { return s.frequencies().omegaDrive; },
+                               "the drive's own frequency [rad/s]: the Rayleigh quotient of its elastic field, "
+                               "what times the smooth start and rule (c)")
+        .def_property_readonly("drive_cg_iterations",
+                               [](const Simulation& s) { return s.frequencies().driveIterations; })
         .def_property_readonly("lanczos_iterations", [](const Simulation& s) { return s.frequencies().iterations; })
         .def_property_readonly("damping_coefficient", &Simulation::dampingCoefficient)
         .def_property_readonly("part_names", &Simulation::partNames,

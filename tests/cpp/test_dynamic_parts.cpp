@@ -247,7 +247,7 @@ TEST(DirectDynamicParts, TheStatelessPartsRoundTripNothing) {
 TEST(DynamicParts, EveryRegisteredPartRoundTripsItsState) {
     DriveSetup d;
     d.program.strainRate = 0.5, d.program.rampTime = 2e-4, d.program.lossSpeedup = 20;
-    d.gaugeLength = 0.1, d.omega1 = 2 * M_PI / 1e-4, d.splitWindow = 2e-4, d.rho = 2400, d.Df = 100;
+    d.gaugeLength = 0.1, d.omegaDrive = 2 * M_PI / 1e-4, d.splitWindow = 2e-4, d.rho = 2400, d.Df = 100;
     const RunSetup r{kDt, kR, 1e-4, 0.0};
     int drives = 0, stops = 0, dampings = 0;
     forEachPartType(static_cast<const Drives*>(nullptr), [&](auto* type) {
@@ -281,7 +281,7 @@ TEST(DynamicParts, EveryRegisteredPartRoundTripsItsState) {
 // bar forces; its parameters are not read (zeta_high of bar dashpots not named).
 TEST(DynamicParts, OnlyTheDampingsNamedAreBuilt) {
     const double omega1 = 800, omegaMax = 1e5;
-    const PartsSetup setup{omega1, omegaMax, 10, 3, 0.1, false};
+    const PartsSetup setup{omega1, omegaMax, omega1, 10, 3, 3, 8, 0.1, false};
     RunParams run;
     const auto parts = [&](const std::string& names) {
         run.dampings = dampingsNamed(names);

@@ -204,18 +204,18 @@ TEST(Dynamics, WholeRunToLoadLossBalancesEnergy) {
     EXPECT_EQ(s.edgeStrainAtPeak, s.strainAtPeak);  // uniform load: every upper node moves alike
     // The peak and its strain are the reference's own run of this specimen
     // (`tests/reference/reference_run.py --modules 4 --seed 3`: ldem_ref.py, the
-    // spec in numpy, fed this seed's G_f, with dt and D_f from its own dense
-    // eigen-solve; the largest single step, at step 7646, 35 s): the same
+    // spec in numpy, fed this seed's G_f, with dt, D_f and the smooth start from
+    // its own dense solves; the largest single step, at step 7578, 16 s): the same
     // specimen undamped at high frequency (zeta_high 0) at 0.4 of the limit,
     // recorded at every step (a record of one state is that state's reaction).
-    // Measured 3.7e-12 and 1.6e-10 apart (the two time steps differ by 1.5e-10:
-    // Lanczos against the dense solve). 1e-8 is far below what a 1 % error of
-    // any input moves them.
+    // Measured 2.5e-9 and 1.6e-10 apart (the two time steps differ by 1.5e-10:
+    // Lanczos against the dense solve; omega_d by 3e-13). 1e-8 is far below what
+    // a 1 % error of any input moves them.
     RunParams asReference = rp;
     asReference.zetaHigh = 0, asReference.dtSafety = 0.4, asReference.recordEvery = 1;
     Simulation ref(cubeTestSpecimen(4, 4, 4, kL0, m, lp), m, lp, asReference);
     const RunSummary r = ref.run([&](const CurvePoint& p) { return p.step < 9000; });
-    const double refPeak = 2467488.8277469147, refStrain = 1.9562161382604177e-4;
+    const double refPeak = 2467486.6354227173, refStrain = 1.9561965777452228e-4;
     EXPECT_NEAR(r.peakStress, refPeak, 1e-8 * refPeak);
     EXPECT_NEAR(r.strainAtPeak, refStrain, 1e-8 * refStrain);
 }

@@ -1,6 +1,6 @@
 // Natural frequencies of the lattice (LDEM_SPEC section 5): the matrix-free
 // Lanczos estimates of omega_1 and omega_max against (i) a dense eigensolver on
-// a stiffness matrix assembled here, bar by bar, independently of the library,
+// a stiffness matrix assembled bar by bar (Assembled.hpp), independently of the library,
 // (ii) the Rayleigh quotient of smooth trial shapes (upper bound on omega_1^2)
 // and (iii) the Gershgorin bound (upper bound on omega_max^2).
 #include <gtest/gtest.h>
@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "Assembled.hpp"
 #include "ldem/InternalForces.hpp"
 #include "ldem/Lattice.hpp"
 #include "ldem/laws/Hillerborg.hpp"
@@ -23,31 +24,6 @@
 using namespace ldem;
 
 namespace {
-
-// Full 3N x 3N stiffness: a bar of direction n and stiffness k = EA/L adds
-// k n n^T to the (i,i) and (j,j) blocks and -k n n^T to (i,j), (j,i).
-Eigen::MatrixXd assembleStiffness(const Lattice& lat) {
-    const Eigen::Index N = 3 * lat.numNodes();
-    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
-    const BarTable t = listBars(lat);
-    const auto x0 = nodePositions(lat);
-    for (std::int64_t b = 0; b < lat.numBars(); ++b) {
-        const auto i = t.n1[b], j = t.n2[b];
-        const double dx = x0[0][j] - x0[0][i], dy = x0[1][j] - x0[1][i], dz = x0[2][j] - x0[2][i];
-        const double L = std::sqrt(dx * dx + dy * dy + dz * dz);
-        const double n[3] = {dx / L, dy / L, dz / L};
-        const double k = t.EA[b] / L;
-        for (int a = 0; a < 3; ++a)
-            for (int c = 0; c < 3; ++c) {
-                const double v = k * n[a] * n[c];
-                K(3 * i + a, 3 * i + c) += v;
-                K(3 * j + a, 3 * j + c) += v;
-                K(3 * i + a, 3 * j + c) -= v;
-                K(3 * j + a, 3 * i + c) -= v;
-            }
-    }
-    return K;
-}
 
 struct Reduced {
     std::vector<Eigen::Index> dofs;  // free DOFs, as 3 node + d
@@ -233,4 +209,95 @@ TEST(Modal, MatrixFreeProductIsAssembledStiffness) {
         EXPECT_NEAR(f.y[i], -a * yv(3 * i + 1), 1e-6 * a * scale);
         EXPECT_NEAR(f.z[i], -a * yv(3 * i + 2), 1e-6 * a * scale);
     }
+}
+
+namespace {
+// The unit drive of a specimen: each prescribed DOF at its weight (U = 1), and the dense u_f of K_ff u_f = -K_fp u_p.
+Field3 unitDrive(const Specimen& s) {
+    Field3 w(s.lattice.numNodes());
+    for (std::size_t k = 0; k < s.prescribed.node.size(); ++k)
+        w[s.prescribed.dim[k]][s.prescribed.node[k]] = s.prescribed.weight[k];
+    return w;
+}
+
+double denseDriveFrequency(const Specimen& s) {
+    const Lattice& lat = s.lattice;
+    const Eigen::MatrixXd K = assembleStiffness(lat);
+    const Field3 w = unitDrive(s);
+    const Eigen::Index N = 3 * lat.numNodes();
+    Eigen::VectorXd u(N), m(N);
+    std::vector<Eigen::Index> freeDofs;
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i)
+        for (int d = 0; d < 3; ++d) {
+            u(3 * i + d) = w[d][i], m(3 * i + d) = lat.mass[i];
+            if (!(s.prescribed.mask[i] & (1u << d))) freeDofs.push_back(3 * i + d);
+        }
+    const Eigen::Index f = Eigen::Index(freeDofs.size());
+    Eigen::MatrixXd Kff(f, f);
+    Eigen::VectorXd rhs = -(K * u);  // u is zero on the free DOFs: -K_fp u_p there
+    Eigen::VectorXd b(f);
+    for (Eigen::Index a = 0; a < f; ++a) {
+        b(a) = rhs(freeDofs[a]);
+        for (Eigen::Index c = 0; c < f; ++c) Kff(a, c) = K(freeDofs[a], freeDofs[c]);
+    }
+    const Eigen::VectorXd uf = Kff.ldlt().solve(b);
+    for (Eigen::Index a = 0; a < f; ++a) u(freeDofs[a]) = uf(a);
+    return std::sqrt(u.dot(K * u) / u.dot(m.asDiagonal() * u));
+}
+}  // namespace
+
+// omega_d (driveFrequency): the matrix-free CG's Rayleigh quotient is the dense one, for
+// the uniform and the triangular drive, clamped and on rollers.
+TEST(Modal, DriveFrequencyIsTheDenseRayleighQuotient) {
+    Material m;
+    for (bool rollers : {false, true})
+        for (LoadShape load : {LoadShape::Uniform, LoadShape::Triangular}) {
+            LoadingParams lp;
+            lp.bottomLateralFree = rollers, lp.shape = load;
+            const Specimen s = cubeTestSpecimen(3, 3, 3, 0.02, m, lp);
+            int iterations = 0;
+            const double cg = driveFrequency(s.lattice, s.prescribed.mask, unitDrive(s), &iterations);
+            const double dense = denseDriveFrequency(s);
+            SCOPED_TRACE(testing::Message() << "rollers " << rollers << ", load " << int(load));
+            EXPECT_NEAR(cg, dense, 1e-9 * dense);
+            EXPECT_GT(iterations, 0);
+            EXPECT_LT(iterations, 300);  // (220 free DOFs at most: CG converges within them, bar rounding)
+        }
+}
+
+// A one-module-wide column of n modules, every node held laterally, its lower end held and its
+// upper end pulled along z, the end centre nodes (one centre-centre bar each) moved with the
+// linear field u = z/H e_z: that field is then the elastic solution (every free node's bars
+// pull up and down alike), so omega_d is its Rayleigh quotient, by hand. With
+// k = EA/L, u'Ku = sum k (n_z dz/H)^2 = sum EA L n_z^4 / H^2: the 4 vertical edges of each of
+// the n levels (a quarter each: E A_n L0), the n - 1 centre-centre bars (E A_n L0) and the 8n
+// diagonals (n_z^2 = 1/3, L = sqrt(3)/2 L0, A_d = 2 delta/sqrt(3) A_n: 8 delta/9 E A_n L0 each level):
+//   u'Ku H^2 = E phi L0^3 (2n - 1 + 8 delta n/9)     (= E phi L0^3 (3n - 1) at nu = 0.25).
+// The masses (rho L0^3 a module: half to its centre, 1/16 to each corner):
+//   u'Mu H^2 = rho L0^5 [ sum_{k<n} k^2/2 + n^2/4 + sum_{k<n} (k + 1/2)^2/2 ].
+// For large n, omega_d -> sqrt(3 E'/rho)/H, E' = 3 E phi = 1.2 E the modulus of uniaxial strain.
+TEST(DirectModal, DriveFrequencyOfALaterallyHeldColumnIsItsLinearField) {
+    Material m;
+    const int n = 7;
+    const double L0 = 0.02, H = n * L0;
+    LoadingParams lp;
+    lp.topLateralFree = false;
+    Specimen s = cubeTestSpecimen(1, 1, n, L0, m, lp);
+    for (std::int32_t i = 0; i < std::int32_t(s.lattice.numNodes()); ++i)
+        for (int d : {0, 1})
+            if (!(s.prescribed.mask[i] & (1u << d))) s.prescribed.add(i, d, 0.0);
+    s.prescribed.add(s.lattice.centreId(0, 0, 0), 2, 0.5 / n);
+    s.prescribed.add(s.lattice.centreId(0, 0, n - 1), 2, (n - 0.5) / n);
+    const double phi = nayfehPhi(m.nu), delta = nayfehDelta(m.nu);
+    const double uKu = m.E * phi * std::pow(L0, 3) * (2 * n - 1 + 8 * delta * n / 9) / (H * H);
+    double levels = n * n / 4.0;  // the upper corners, 4 x 1/16
+    for (int k = 0; k < n; ++k) levels += k * k / 2.0 + (k + 0.5) * (k + 0.5) / 2.0;
+    const double uMu = m.rho * std::pow(L0, 5) * levels / (H * H);
+    const double want = std::sqrt(uKu / uMu);
+    int iterations = 0;
+    const double got = driveFrequency(s.lattice, s.prescribed.mask, unitDrive(s), &iterations);
+    EXPECT_NEAR(got, want, 1e-9 * want);
+    EXPECT_LT(iterations, 100);
+    std::printf("[ modal ] column 1x1x%d held laterally: omega_d %.6e rad/s, by hand %.6e, sqrt(3.6 E/rho)/H %.4e\n",
+                n, got, want, std::sqrt(3 * 1.2 * m.E / m.rho) / H);
 }

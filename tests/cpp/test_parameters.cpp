@@ -14,7 +14,7 @@ using namespace ldem;
 
 TEST(Parameters, EveryNameOnceAndEveryDefaultInsideItsDomain) {
     const auto& table = cubeTestParameters();
-    ASSERT_EQ(table.size(), 53u);  // 2 geometry + 13 material + 16 loading + 22 run
+    ASSERT_EQ(table.size(), 54u);  // 2 geometry + 13 material + 18 loading + 21 run
     std::set<std::string> names;
     const CubeTestParams defaults;
     for (const ParamInfo& p : table) {

@@ -46,7 +46,7 @@ THREADS = (1, 2, 3)
 SUMMARY_KEYS = ("status", "peak_stress_MPa", "strain_at_peak", "edge_strain_at_peak", "separated", "U_num_J",
                 "U_ratio", "load_loss", "separation", "fracture_energy_J", "min_fracture_energy_J", "U_mincut_J",
                 "energy_balance_error", "energy_error", "stop_reason", "clamped_bars", "n_nodes", "n_bars", "steps",
-                "dt_s", "dt_limit_s", "omega1_rad_s", "omega_max_rad_s", "damping_coefficient_1_s", "ramp_time_s",
+                "dt_s", "dt_limit_s", "omega1_rad_s", "omega_d_rad_s", "omega_max_rad_s", "damping_coefficient_1_s", "ramp_time_s",
                 "split_window_s", "parameters")
 ENERGIES = ("external_work_J", "kinetic_J", "elastic_J", "fracture_J", "damping_J")
 

@@ -46,16 +46,18 @@ def test_the_core_alone_refuses_the_same_jump():
 
 
 def test_a_run_too_fast_for_quasi_static_is_flagged(cli, tmp_path):
-    """0.04 m at a constant 2 /s: the kinetic energy at the peak is 1.5% of the external
+    """0.04 m at a constant 4 /s: the kinetic energy at the peak is 1.9% of the external
     work (measured at the defaults' step, 0.8 of the limit with the bar dashpots), above the 1% limit: summary.json and the terminal say so,
-    the run still exits 0. At 0.5 /s it is 0.55%: not flagged."""
+    the run still exits 0. At 0.5 /s it is 0.56%: not flagged. (So fast, the balance closes
+    to 1.0 %, at the default tolerance: that is not what is tested here.)"""
     fast, slow = tmp_path / "fast", tmp_path / "slow"
-    r = cli("cube", *SMALL, *CONSTANT, "--strain-rate", "2", "--stop-at", "load_loss", "--out", str(fast))
+    r = cli("cube", *SMALL, *CONSTANT, "--strain-rate", "4", "--stop-at", "load_loss", "--energy-tolerance", "0.02",
+            "--out", str(fast))
     assert r.returncode == 0, r.stderr
-    assert "warning: not quasi-static: the kinetic energy at the peak is 1.5% of the external work" in r.stderr
+    assert "warning: not quasi-static: the kinetic energy at the peak is 1.9% of the external work" in r.stderr
     q = json.loads((fast / "summary.json").read_text())["quasi_static"]
     assert q["flagged"] and 0.012 < q["kinetic_over_work_at_peak"] < 0.04 and q["kinetic_limit"] == 0.01
-    assert 0.05 < q["drive_step_over_eps_p"] < 0.09  # 2 /s x 2.15e-6 s / 6.3e-5
+    assert 0.11 < q["drive_step_over_eps_p"] < 0.16  # 4 /s x 2.15e-6 s / 6.3e-5
     assert 0.2 < q["periods_to_eps_p"] < 0.6 and "fewer than the 3 of rule (c)" in r.stderr
     r = cli("cube", *SMALL, *CONSTANT, "--strain-rate", "0.5", "--stop-at", "load_loss", "--out", str(slow))
     assert r.returncode == 0 and "quasi-static" not in r.stderr, r.stderr
@@ -64,11 +66,11 @@ def test_a_run_too_fast_for_quasi_static_is_flagged(cli, tmp_path):
 
 
 def test_rule_c_counts_the_periods_the_drive_takes_to_strain_eps_p(cli, tmp_path):
-    """Rule (c) (pkg/ldem/dynamics/QuasiStatic.hpp): N = eps_p omega_1 / (2 pi strain_rate) in summary.json;
+    """Rule (c) (pkg/ldem/dynamics/QuasiStatic.hpp): N = eps_p omega_d / (2 pi strain_rate) in summary.json;
     a drive slower than N = 3 is not warned, a faster one is, with the factor that meets the rule."""
     import math
     runs = {}
-    for rate in ("0.02", "0.5"):
+    for rate in ("0.02", "1"):
         out = tmp_path / rate
         r = cli("cube", *SMALL, "--strain-rate", rate, "--stop-at", "load_loss", "--out", str(out))
         assert r.returncode == 0, r.stderr
@@ -76,31 +78,31 @@ def test_rule_c_counts_the_periods_the_drive_takes_to_strain_eps_p(cli, tmp_path
     for rate, (err, s) in runs.items():
         q = s["quasi_static"]
         assert q["rate_periods"] == 3
-        assert q["periods_to_eps_p"] == pytest.approx(6.3e-5 * s["omega1_rad_s"] / (2 * math.pi * float(rate)), rel=1e-12)
+        assert q["periods_to_eps_p"] == pytest.approx(6.3e-5 * s["omega_d_rad_s"] / (2 * math.pi * float(rate)), rel=1e-12)
     assert runs["0.02"][1]["quasi_static"]["periods_to_eps_p"] > 3 and "rule (c)" not in runs["0.02"][0]
-    q = runs["0.5"][1]["quasi_static"]
+    q = runs["1"][1]["quasi_static"]
     assert q["periods_to_eps_p"] < 3
-    assert f"a strain rate {q['periods_to_eps_p'] / 3:.2g} times this one meets it" in runs["0.5"][0]
+    assert f"a strain rate {q['periods_to_eps_p'] / 3:.2g} times this one meets it" in runs["1"][0]
 
 
 def test_rate_periods_drives_at_rule_c_from_the_specimens_own_period(cli, tmp_path):
-    """rate_periods N > 0 (rule (c) as the rate): the drive strains eps_p in N fundamental periods,
-    eps_p omega_1 / (2 pi N), whatever strain_rate says; summary.json says the rate driven, and the
+    """rate_periods N > 0 (rule (c) as the rate): the drive strains eps_p in N periods of its own mode,
+    eps_p omega_d / (2 pi N), whatever strain_rate says; summary.json says the rate driven, and the
     curve's mean strain grows at it past the smooth start."""
     import math
     out = tmp_path / "c"
-    r = cli("cube", *SMALL, *CONSTANT, "--strain-rate", "0.5", "--rate-periods", "3", "--stop-at", "load_loss",
+    r = cli("cube", *SMALL, *CONSTANT, "--strain-rate", "1", "--rate-periods", "3", "--stop-at", "load_loss",
             "--out", str(out))
     assert r.returncode == 0, r.stderr
     s = json.loads((out / "summary.json").read_text())
     q = s["quasi_static"]
-    rate = 6.3e-5 * s["omega1_rad_s"] / (2 * math.pi * 3)
+    rate = 6.3e-5 * s["omega_d_rad_s"] / (2 * math.pi * 3)
     assert q["strain_rate"] == pytest.approx(rate, rel=1e-12) and q["periods_to_eps_p"] == pytest.approx(3, rel=1e-12)
-    assert "rule (c)" not in r.stderr  # 0.5 /s would be warned (above)
+    assert "rule (c)" not in r.stderr  # 1 /s would be warned (above)
     c = ldem.io.read_curve(str(out / "curve.csv"))
     t, e = (np.asarray(c[k], dtype=float) for k in ("time_s", "mean_strain"))
     # past the smooth start of two periods, before the peak
-    late = (t > 2 * (2 * math.pi / s["omega1_rad_s"])) & (e < 0.5 * s["strain_at_peak"])
+    late = (t > s["ramp_time_s"]) & (e < 0.5 * s["strain_at_peak"])
     assert late.sum() >= 3
     assert np.diff(e[late]) / np.diff(t[late]) == pytest.approx(rate, rel=1e-7)  # (the CSV keeps 10 digits)
 

@@ -135,8 +135,10 @@ def test_absurd_inputs_are_refused_with_their_rule(cli, tmp_path, args, message)
 
 def test_brittle_bars_by_construction_are_warned_of(cli, tmp_path):
     """Gf_mean 3.8 N/m with Gf_cv 0: below the normal bars' 4.01 N/m, above the
-    diagonals' 3.41: the normal bars are brittle, the run goes on with a warning."""
-    r = cli("cube", *TINY, "--out", str(tmp_path / "o"), "--Gf-mean", "3.8", "--Gf-cv", "0")
+    diagonals' 3.41: the normal bars are brittle, the run goes on with a warning.
+    (Half its bars snapping at once, this cube's energy balance closes to 0.4-1.2 %
+    depending on the last bits of its smooth start: the tolerance is not what is tested.)"""
+    r = cli("cube", *TINY, "--out", str(tmp_path / "o"), "--Gf-mean", "3.8", "--Gf-cv", "0", "--energy-tolerance", "0.03")
     assert r.returncode == 0, r.stderr
     assert "warning: Gf_mean 3.8 N/m is below E phi eps_p^2 L0 / (2 c_a) = 4.01 N/m" in r.stderr
     assert "66 of 130 bars had eps_r < eps_p" in r.stdout
@@ -155,16 +157,16 @@ def test_the_help_states_the_rules_with_true_numbers(cli):
 
 @pytest.mark.direct
 def test_the_ramp_time_is_held_to_the_rate_rate_periods_derives():
-    """rate_periods N sets the rate from the specimen's omega_1 at set-up:
-    eps_p / strain_rate = N T1. The smooth start's bound (ramp_time at most
-    eps_p / strain_rate, pkg/ldem/Relations.hpp) is that rate's: 3 T1 here,
+    """rate_periods N sets the rate from the drive's own omega_d at set-up:
+    eps_p / strain_rate = N T_d. The smooth start's bound (ramp_time at most
+    eps_p / strain_rate, pkg/ldem/Relations.hpp) is that rate's: 3 T_d here,
     a tenth of the bound of the strain_rate given beside it (0.02 /s)."""
     base = dict(size=0.04, rate_periods=3.0, strain_rate=0.02, threads=1)
-    T1 = 2 * math.pi / ldem.CubeTest(**base).simulation().omega1
-    assert ldem.CubeTest(**base).eps_p / 0.02 > 10 * 3 * T1  # the rate given would allow 10 times the ramp
-    assert ldem.CubeTest(**base, ramp_time=0.99 * 3 * T1).simulation().ramp_time == 0.99 * 3 * T1
+    Td = 2 * math.pi / ldem.CubeTest(**base).simulation().omega_d
+    assert ldem.CubeTest(**base).eps_p / 0.02 > 10 * 3 * Td  # the rate given would allow 10 times the ramp
+    assert ldem.CubeTest(**base, ramp_time=0.99 * 3 * Td).simulation().ramp_time == 0.99 * 3 * Td
     with pytest.raises(ValueError, match=r"ramp_time .* s is above eps_p / strain_rate = .* s: the smooth start"):
-        ldem.CubeTest(**base, ramp_time=1.01 * 3 * T1).simulation()
+        ldem.CubeTest(**base, ramp_time=1.01 * 3 * Td).simulation()
 
 
 @pytest.mark.direct

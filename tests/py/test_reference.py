@@ -374,7 +374,9 @@ def test_frequencies_time_step_damping(dims, load, top_free, zeta):
     assert s.dt_limit == pytest.approx(0.4 * 2 / wmax, rel=1e-10)    # the spec's scheme (Pair): 0.4 of 2/omega_max
     assert s.dt == s.dt_limit
     assert s.damping_coefficient == pytest.approx(2 * zeta * w1, rel=1e-10)   # D_f = 2 zeta omega_1
-    assert s.ramp_time == pytest.approx(2 * 2 * math.pi / w1, rel=1e-10)     # README: two fundamental periods
+    wd = R.drive_frequency(p.lat, R.Boundary(p.lat, load, top_free))
+    assert s.omega_d == pytest.approx(wd, rel=1e-9)                            # the drive's own mode
+    assert s.ramp_time == pytest.approx(2 * 2 * math.pi / wd, rel=1e-9)       # its smooth start: two periods
 
 
 def test_time_step_above_the_limit_is_refused():
@@ -405,8 +407,8 @@ def test_one_module_free_top_is_a_mechanism():
     """1 module, upper face free laterally: the upper square can twist about the
     vertical axis without stretching a bar to first order, so omega_1 = 0 (LAPACK
     returns omega_1^2 of either sign at round-off, |omega_1^2| ~ 1e-16 omega_max^2,
-    which the reference takes as zero). The engine refuses it (no drive can be
-    built on omega_1 = 0: the ramp time is two periods)."""
+    which the reference takes as zero). The engine refuses it (no damping can be
+    stated on omega_1 = 0)."""
     lat = R.Lattice(1, 1, 1, L0, R.Material())
     w1, wmax = R.frequencies(lat, R.Boundary(lat))
     assert w1 < 1e-6 * wmax

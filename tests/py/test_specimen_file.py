@@ -273,11 +273,11 @@ def test_keyword_arguments_build_what_the_file_builds():
 @pytest.mark.direct
 def test_a_files_default_rate_strains_eps_p_in_twelve_of_its_own_periods():
     """The rate a file without one is driven at, set up (no step run):
-    strain_rate = eps_p omega_1 / (2 pi 12), from the specimen's own omega_1."""
+    strain_rate = eps_p omega_d / (2 pi 12), from the drive's own frequency omega_d."""
     test = SpecimenTest(example("dogbone"), overrides={"threads": 1})
     sim = test.simulation()
     eps_p = test.build.params["eps_p"]
-    assert sim.strain_rate == pytest.approx(eps_p * sim.omega1 / (2 * np.pi * 12), rel=1e-12)
+    assert sim.strain_rate == pytest.approx(eps_p * sim.omega_d / (2 * np.pi * 12), rel=1e-12)
 
 
 def test_a_file_without_a_rate_is_driven_from_its_own_period():
@@ -296,7 +296,7 @@ def test_a_file_without_a_rate_is_driven_from_its_own_period():
     assert back["rate_periods"] == 3  # --set's rule (c) over the file's strain_rate (it was lost)
     s = SpecimenTest(d, overrides={"final_strain": 5e-5, "threads": 1}).run().summary
     assert s["quasi_static"]["periods_to_eps_p"] == pytest.approx(12, rel=1e-12)
-    assert s["quasi_static"]["strain_rate"] == pytest.approx(s["parameters"]["parameters"]["eps_p"] * s["omega1_rad_s"] / (24 * np.pi), rel=1e-12)
+    assert s["quasi_static"]["strain_rate"] == pytest.approx(s["parameters"]["parameters"]["eps_p"] * s["omega_d_rad_s"] / (24 * np.pi), rel=1e-12)
 
 
 def test_the_line_named_is_the_key_s_line(tmp_path):

@@ -311,6 +311,20 @@ def frequencies(lat, bc):
     return math.sqrt(psd_eigenvalue(w2[0], w2)), math.sqrt(w2[-1])
 
 
+def drive_frequency(lat, bc):
+    """omega_d, the drive's own frequency: sqrt(u'Ku / u'Mu) of the elastic field u of
+    a unit drive (the upper face's z at its weight, the other prescribed DOFs at 0, the
+    free ones in equilibrium, K_ff u_f = -K_fp u_p), over every DOF; dense. It times the
+    smooth start (two periods)."""
+    K = lat.stiffness()
+    u = np.zeros((lat.n_nodes, 3))
+    u[bc.top, 2] = bc.weight
+    u = u.reshape(-1)
+    free = bc.free.reshape(-1)
+    u[free] = np.linalg.solve(K[np.ix_(free, free)], -K[np.ix_(free, ~free)] @ u[~free])
+    return math.sqrt(u @ K @ u / (u @ (np.repeat(lat.mass, 3) * u)))
+
+
 def psd_eigenvalue(value, eigenvalues):
     """An eigenvalue of a positive semi-definite matrix, round-off removed.
     A backward-stable solver (any correct LAPACK) returns the eigenvalues of

@@ -3,10 +3,16 @@
 // cracks, where the explicit scheme pumps energy into its highest modes (the
 // model's damping is MassDamping.hpp). Its force (BarDashpot.hpp):
 //   F_d = beta (EA/L) r de/dt,   beta = 2 zeta_high / omega_max,   r = 1 in compression, 0 in tension,
-// stiffness-proportional where it acts: zeta_i = zeta_high omega_i / omega_max. It
-// acts with v(n-1/2), explicitly; for one mode the scheme is stable iff
+// stiffness-proportional where it acts: zeta_i = zeta_high omega_i / omega_max. Read
+// at v(n-1/2) (lagged), for one mode the scheme is stable iff
 //   dt <= (2/omega) (sqrt(1 + zeta^2) - zeta),
 // which holds as well for dashpots on some bars only (M - (dt^2/4) K - (dt/2) C >= 0).
+// Read at v~(n) = v(n-1/2) + dt/2 f*(n)/m (predicted; f* the bars' forces), one mode,
+// h = omega dt, x_n, w_n = dt v(n-1/2):
+//   w_n+1 = (1 - 2 zeta h) w_n - h^2 (1 - zeta h) x_n,   x_n+1 = x_n + w_n+1:
+// det 1 - 2 zeta h, trace 2 - 2 zeta h - h^2 (1 - zeta h), stable iff h <= 2 and
+// zeta h <= 1: the undamped limit while zeta_high omega_max dt <= 1. Its force waits
+// for every node's f* (a second pass over the bars whose dashpots act: BarDashpot.hpp).
 // Measured: results/dynamics/README.md.
 #pragma once
 #include <cmath>
@@ -16,6 +22,7 @@
 
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
+#include "ldem/InternalForces.hpp"
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
@@ -25,7 +32,11 @@
       "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
       "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
       "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
-      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high")
+      "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high (dashpot_velocity lagged)") \
+    X(bool, dashpotPredicted, "dashpot_velocity", false, "", Domain::choices({"lagged", "predicted"}),        \
+      "the velocity the bar dashpots read: lagged, v(n-1/2); predicted, v(n-1/2) + dt/2 f/m with f the "        \
+      "bars' forces at n, stable up to the undamped 2/omega_max while zeta_high omega_max dt <= 1, at the "     \
+      "cost of a second pass over the bars whose dashpots act")
 
 namespace ldem {
 
@@ -35,6 +46,8 @@ inline double dashpotBeta(double zetaHigh, double omegaMax) { return 2.0 * zetaH
 // The stability limit of central differences with an explicit damping ratio
 // zeta on the highest mode, as a fraction of the undamped 2/omega_max.
 inline double dampedStepFactor(double zeta) { return std::sqrt(1.0 + zeta * zeta) - zeta; }
+// The same for the dashpot read at the predicted velocity: h <= 2 and zeta h <= 1.
+inline double predictedStepFactor(double zeta) { return zeta > 0.5 ? 0.5 / zeta : 1.0; }
 
 class BarDashpots {
 public:
@@ -48,12 +61,21 @@ public:
     BarDashpots(const Params& p, const DampingSetup& s) : zeta_(p.zetaHigh) {
         d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
         if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
+        if (on() && p.dashpotPredicted)
+            d_.predicted = true, d_.coefficient.assign(std::size_t(s.bars), 0.0), d_.rows.assign(std::size_t(s.rows), 0),
+            d_.velocity = Field3(s.nodes);
     }
     bool on() const { return d_.beta > 0; }
     double coefficient() const { return 0.0; }  // no mass-proportional term
     double lag() const { return 0.0; }
     double beta() const { return d_.beta; }  // [s]
-    double stepFactor() const { return dampedStepFactor(zeta_); }
+    double stepFactor() const { return d_.predicted ? predictedStepFactor(zeta_) : dampedStepFactor(zeta_); }
+    // Predicted: the nodes wait for the dashpots' forces, which wait for every node's f*.
+    bool deferred() const { return d_.predicted; }
+    void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                     Field3& f) {
+        if (d_.predicted) predictedDashpots(lat, mask, u, v, d_, f);
+    }
     CentralDifference nodeUpdate(const CentralDifference& cd) {
         d_.halfDt = 0.5 * cd.dt;
         return cd;

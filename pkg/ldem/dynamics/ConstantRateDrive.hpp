@@ -47,13 +47,13 @@ public:
     static constexpr bool kChoice = true;
     struct Params {};
     ConstantRateDrive() = default;  // at rest: v0 = 0
-    // v0 = strain_rate x the gauge length; the ramp ramp_time, or two fundamental periods (0).
-    ConstantRateDrive(const ProgramParams& p, double gaugeLength, double period1)
-        : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * period1, p.lossSpeedup} {
+    // v0 = strain_rate x the gauge length; the ramp ramp_time, or two periods of the drive's own mode (0).
+    ConstantRateDrive(const ProgramParams& p, double gaugeLength, double periodDrive)
+        : program_{p.strainRate * gaugeLength, p.rampTime > 0 ? p.rampTime : 2 * periodDrive, p.lossSpeedup} {
         program_.speedupRamp = program_.rampTime, program_.strainRate = p.strainRate;
     }
     ConstantRateDrive(const Params&, const DriveSetup& s)
-        : ConstantRateDrive(s.program, s.gaugeLength, 2 * 3.14159265358979323846 / s.omega1) {}
+        : ConstantRateDrive(s.program, s.gaugeLength, 2 * 3.14159265358979323846 / s.omegaDrive) {}
     static const char* select(const Params&, const DriveSetup&, bool) { return name; }
     void setUp(const RunSetup&) {}
     double now(double t, double) const { return program_.displacement(t); }

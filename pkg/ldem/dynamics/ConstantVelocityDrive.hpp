@@ -26,7 +26,7 @@ public:
         LDEM_CONSTANT_VELOCITY_PARAMETERS(LDEM_DECLARE_MEMBER)
     };
     ConstantVelocityDrive(const Params& p, const DriveSetup& s)
-        : program_{p.driveVelocity, s.program.rampTime > 0 ? s.program.rampTime : 4 * 3.14159265358979323846 / s.omega1} {
+        : program_{p.driveVelocity, s.program.rampTime > 0 ? s.program.rampTime : 4 * 3.14159265358979323846 / s.omegaDrive} {
         program_.strainRate = p.driveVelocity / s.gaugeLength;
     }
     static const char* select(const Params&, const DriveSetup&, bool) { return name; }

@@ -14,6 +14,7 @@
 
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Integrator.hpp"
+#include "ldem/Lattice.hpp"
 #include "ldem/Parameters.hpp"
 #include "ldem/dynamics/Part.hpp"
 
@@ -75,6 +76,8 @@ public:
         if (relative_ && !switched_ && r.summary.loadLoss.reached()) switched_ = true, mean_ = r.v;
     }
     DashpotPass barPass(const Field3&) const { return {}; }  // no bar forces
+    bool deferred() const { return false; }
+    void afterForces(const Lattice&, const std::vector<std::uint8_t>&, const Field3&, const Field3&, Field3&) {}
     double stepWork(int) const { return 0.0; }
     double closingWork(int) const { return 0.0; }
     double openingWork(int) const { return 0.0; }

@@ -25,7 +25,8 @@ struct ProgramParams {
 // What a drive is built from, beyond its parameters.
 struct DriveSetup {
     ProgramParams program;  // its strain_rate the one driven (rate_periods')
-    double gaugeLength = 0, omega1 = 0, splitWindow = 0, rho = 0;  // [m], [rad/s], [s], [kg/m^3]
+    double gaugeLength = 0, splitWindow = 0, rho = 0;  // [m], [s], [kg/m^3]
+    double omegaDrive = 0;  // omega_d, the drive's own frequency (Modal.hpp: driveFrequency), its smooth start's [rad/s]
     double Df = 0, filterTime = 0;  // the mass damping's D_f [1/s]; its filter time, relative (0: absolute) [s]
     bool openingControl = false;    // the specimen has a controlled probe
 };
@@ -35,6 +36,8 @@ struct DampingSetup {
     double omega1 = 0, omegaMax = 0;  // [rad/s]
     std::int64_t bars = 0;            // of the lattice (its bar numbers)
     int layers = 0;                   // bar layers
+    std::int64_t rows = 0;            // bar rows
+    std::int64_t nodes = 0;           // of the lattice (its node ids)
 };
 
 // The run's set-up, complete: every drive and stop rule is told it once (setUp), before the first step.

@@ -38,21 +38,22 @@ std::pair<std::string, std::vector<double>> stateOf(const char* role, const Part
 }
 }  // namespace
 
-LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const RunParams& r, double omega1, double L0) {
+LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const RunParams& r, double omegaDrive,
+                            double L0) {
     LoadingParams driven = l;
     if (l.ratePeriods > 0) {
-        driven.strainRate = rateForPeriods(l.ratePeriods, m.epsP, omega1);
+        driven.strainRate = rateForPeriods(l.ratePeriods, m.epsP, omegaDrive);
         checkRelations(m, driven, r, L0);  // the smooth start against the rate driven
     }
     return driven;
 }
 
 Parts::Parts(const Material& m, const LoadingParams& load, const RunParams& run, const PartsSetup& s)
-    : dampings_(makeDampings(run, {s.omega1, s.omegaMax, s.bars, s.layers})),
-      omega1_(s.omega1) {
+    : dampings_(makeDampings(run, {s.omega1, s.omegaMax, s.bars, s.layers, s.rows, s.nodes})),
+      omegaDrive_(s.omegaDrive) {
     const double pi = 3.14159265358979323846;
     splitWindow_ = run.splitWindow > 0 ? run.splitWindow : 2 * (2 * pi / s.omega1);
-    DriveSetup d{{}, s.gaugeLength, s.omega1, splitWindow_, m.rho, dampingCoefficient(), 0.0, s.openingControl};
+    DriveSetup d{{}, s.gaugeLength, splitWindow_, m.rho, s.omegaDrive, dampingCoefficient(), 0.0, s.openingControl};
     {
         auto& to = d.program;
         const auto& from = load;
@@ -96,7 +97,7 @@ void Parts::record(const CurvePoint& p, RunSummary& s, const Field3& v, const st
                    double dt) {
     const double rate = program().strainRate;
     s.driveStepOverEpsP = driveStep(rate, dt, run_.epsP);
-    s.drivePeriodsToEpsP = periodsToEpsP(rate, run_.epsP, omega1_);
+    s.drivePeriodsToEpsP = periodsToEpsP(rate, run_.epsP, omegaDrive_);
     s.driveStrainRate = rate;
     const bool lossBefore = s.loadLoss.reached();
     StopRecord sr{p, s, loadLoss_.record(p, s), facesJoined};

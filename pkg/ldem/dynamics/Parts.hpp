@@ -25,16 +25,20 @@ namespace ldem {
 
 // What the parts are built from, beyond the parameters.
 struct PartsSetup {
-    double omega1 = 0, omegaMax = 0;  // [rad/s]
+    double omega1 = 0, omegaMax = 0;  // [rad/s]: the dampings'
+    double omegaDrive = 0;            // omega_d [rad/s]: what times the drive (its smooth start, rule (c)'s N)
     std::int64_t bars = 0;            // of the lattice
     int layers = 0;                   // bar layers
+    std::int64_t rows = 0;            // bar rows
+    std::int64_t nodes = 0;           // of the lattice
     double gaugeLength = 0;           // [m]
     bool openingControl = false;      // the specimen has a controlled probe
 };
 
-// The loading as driven: rate_periods > 0 sets strain_rate from the specimen's
-// omega_1 (rule (c), QuasiStatic.hpp), and the relations are checked at that rate.
-LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const RunParams& r, double omega1, double L0);
+// The loading as driven: rate_periods > 0 sets strain_rate from the drive's own
+// frequency omega_d (rule (c), QuasiStatic.hpp), and the relations are checked at that rate.
+LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const RunParams& r, double omegaDrive,
+                            double L0);
 
 using PartStates = std::vector<std::pair<std::string, std::vector<double>>>;
 
@@ -67,6 +71,17 @@ public:
         DashpotPass pass;
         eachDamping([&](auto& d) { pass = pass.state ? pass : d.barPass(v); });
         return pass;
+    }
+    // Whether a damping's bar forces wait for every node's force (then the nodes wait for them), and
+    // those forces, added to f once the force pass gave every node its own.
+    bool deferred() const {
+        bool wait = false;
+        eachDamping([&](const auto& d) { wait = wait || d.deferred(); });
+        return wait;
+    }
+    void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                     Field3& f) {
+        eachDamping([&](auto& d) { d.afterForces(lat, mask, u, v, f); });
     }
     double stepWork(int m) const {
         double w = 0.0;
@@ -129,7 +144,7 @@ private:
     LoadLossDetector loadLoss_;
     std::vector<StopRules> stops_;
     KineticAtPeak kineticAtPeak_;
-    double splitWindow_ = 0, omega1_ = 0;
+    double splitWindow_ = 0, omegaDrive_ = 0;
     RunSetup run_;
 };
 

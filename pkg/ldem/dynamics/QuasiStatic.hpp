@@ -5,8 +5,10 @@
 //   peak: both are refused when the Simulation is built.
 // - Inertia shows at the peak as kinetic energy: K/W above 1 % there is flagged.
 // - Rule (c): the drive strains the gauge by eps_p in no fewer than N = 3
-//   fundamental periods, N = eps_p / (strain_rate T1), T1 = 2 pi / omega_1; a run
-//   below it is warned, not refused. Measured: results/dynamics/README.md.
+//   periods of the mode it drives, N = eps_p / (strain_rate T_d), T_d = 2 pi / omega_d
+//   (Modal.hpp: driveFrequency; omega_1 may be a mode the drive never moves, a
+//   beam's sideways swing); a run below it is warned, not refused. Measured:
+//   results/dynamics/README.md.
 #pragma once
 #include <cmath>
 #include <limits>
@@ -22,15 +24,15 @@ constexpr double kRatePeriods = 3.0;
 // The rate of a specimen whose file gives none (ParameterTable.hpp, specimenOwnDefaults): eps_p in 12 periods.
 constexpr double kSpecimenRatePeriods = 12.0;
 
-// N, the fundamental periods the drive takes to strain eps_p.
-inline double periodsToEpsP(double strainRate, double epsP, double omega1) {
-    return epsP * omega1 / (2 * 3.14159265358979323846 * strainRate);
+// N, the drive's periods 2 pi / omega_d it takes to strain eps_p.
+inline double periodsToEpsP(double strainRate, double epsP, double omegaDrive) {
+    return epsP * omegaDrive / (2 * 3.14159265358979323846 * strainRate);
 }
 
 // Its inverse, the setting rate_periods: the strain rate whose drive strains eps_p in N periods. The
-// relation N x strain_rate = eps_p omega_1 / (2 pi) is symmetric: the same expression with N for the rate.
-inline double rateForPeriods(double periods, double epsP, double omega1) {
-    return periodsToEpsP(periods, epsP, omega1);
+// relation N x strain_rate = eps_p omega_d / (2 pi) is symmetric: the same expression with N for the rate.
+inline double rateForPeriods(double periods, double epsP, double omegaDrive) {
+    return periodsToEpsP(periods, epsP, omegaDrive);
 }
 
 // The drive's displacement in one step over eps_p x the gauge length.

@@ -109,6 +109,11 @@ constexpr bool isDamping() {
     static_assert(std::is_same_v<decltype(std::declval<D&>().nodeUpdate(CentralDifference(0, 0))), CentralDifference>,
                   "nodeUpdate(cd)");
     static_assert(std::is_same_v<decltype(std::declval<D&>().barPass(Field3())), DashpotPass>, "barPass(v)");
+    static_assert(std::is_same_v<decltype(std::declval<const D&>().deferred()), bool>, "deferred()");
+    static_assert(std::is_void_v<decltype(std::declval<D&>().afterForces(
+                      std::declval<const Lattice&>(), std::declval<const std::vector<std::uint8_t>&>(),
+                      std::declval<const Field3&>(), std::declval<const Field3&>(), std::declval<Field3&>()))>,
+                  "afterForces(lat, mask, u, v, f)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().stepWork(0)), double>, "stepWork(m)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().closingWork(0)), double>, "closingWork(m)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().coefficient()), double>, "coefficient(): D_f");
