@@ -6,6 +6,15 @@
 
 namespace ldem {
 
+void RunProgress::begin() {
+    if (!started) {
+        *this = RunProgress();
+        started = true;
+    } else if (!pendingAdvance) {
+        throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
+    }
+}
+
 void RunProgress::record(const CurvePoint& p, double edgeStrain, double dt, double dtLimit) {
     const double total = p.kinetic + p.elastic + p.fracture + p.damping;
     // Energy from nothing (kinetic above all the work put in) or NaN: the

@@ -30,6 +30,7 @@ struct RunProgress {
 
     // A record of state n (edgeStrain: the most-pulled point's U / the gauge length): an unstable
     // integration throws (dt and the stability limit 2/omega_max name it); else its peak and balance.
+    void begin();  // run()'s: fresh the first time, else restored at a record (a specimen that ran refuses)
     void record(const CurvePoint& p, double edgeStrain, double dt, double dtLimit);
     void finish(double energyTolerance);  // the balance error of the whole run, flagged above the tolerance
 };

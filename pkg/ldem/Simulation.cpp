@@ -1,14 +1,10 @@
 #include "ldem/Simulation.hpp"
 
-#include <algorithm>
 #include <array>
-#include <cmath>
 #include <tuple>
 
-#include "ldem/Integrator.hpp"
 #include "ldem/Interrupt.hpp"
 #include "ldem/Parallel.hpp"
-#include "ldem/RandomField.hpp"
 #include "ldem/Relations.hpp"
 #include "ldem/Separation.hpp"
 #include "ldem/Slab.hpp"
@@ -30,12 +26,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     groups_ = std::move(specimen.groups);
     support_ = &groups_.at(meas_.support), loaded_ = &groups_.at(meas_.loaded);
 
-    freq_ = latticeFrequencies(lat_, pre_.mask);
-    refuseMechanism(freq_);
-    Field3 unitDrive(lat_.numNodes());  // the prescribed DOFs at U = 1
-    for (std::size_t k = 0; k < pre_.node.size(); ++k) unitDrive[pre_.dim[k]][pre_.node[k]] = pre_.weight[k];
-    freq_.omegaDrive = driveFrequency(lat_, pre_.mask, unitDrive, &freq_.driveIterations);
-    if (!(freq_.omegaDrive > 0)) freq_.omegaDrive = freq_.omega1;  // a drive that moves nothing: a held specimen's weight
+    freq_ = specimenFrequencies(lat_, pre_);
     load_ = drivenLoading(mat_, load_, run_, freq_.omegaDrive, lat_.L0);
     parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, freq_.omegaDrive, lat_.numBars(),
                                        lat_.numLayers(), std::int64_t(lat_.barRows.size()), lat_.numNodes(),
@@ -108,13 +99,10 @@ void Simulation::computeForces() {
 
 void Simulation::step() {
     weighNextStep();
-    if (parts_.deferred()) {  // the dashpots' forces wait for every node's (BarDashpots.hpp: predicted)
-        computeForces();
-        advanceLayers();
-    } else {
-        // One visit of the law per step: the layered pass is compiled for it.
+    if (parts_.deferred())  // the dashpots' forces wait for every node's (BarDashpots.hpp: predicted)
+        computeForces(), advanceLayers();
+    else  // one visit of the law per step: the layered pass is compiled for it
         layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
-    }
     finishStep();
 }
 
@@ -182,12 +170,7 @@ void Simulation::restore(const Checkpoint& c) {
 RunSummary Simulation::run(const std::function<bool(const CurvePoint&)>& observer) {
     setThreads(threads_);
     RunProgress& g = progress_;
-    if (!g.started) {
-        g = RunProgress();
-        g.started = true;
-    } else if (!g.pendingAdvance) {
-        throw std::invalid_argument("this specimen has already run: build a new one (or restore a checkpoint)");
-    }
+    g.begin();
     RunSummary& s = g.summary;
     if (g.pendingAdvance) {  // restored at a record: the rest of that step
         g.pendingAdvance = false;

@@ -137,8 +137,7 @@ private:
     RisingWeight weight_;
     LoadCell supportCell_, loadedCell_;  // the support's and the loaded group's stresses (measure())
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
-    int recordEvery_ = 1;
-    int threads_ = 1;
+    int recordEvery_ = 1, threads_ = 1;
     RunProgress progress_;
 };
 

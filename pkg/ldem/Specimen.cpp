@@ -7,6 +7,16 @@
 
 namespace ldem {
 
+Frequencies specimenFrequencies(const Lattice& lat, const Prescribed& pre) {
+    Frequencies f = latticeFrequencies(lat, pre.mask);
+    refuseMechanism(f);
+    Field3 unitDrive(lat.numNodes());  // the prescribed DOFs at U = 1
+    for (std::size_t k = 0; k < pre.node.size(); ++k) unitDrive[pre.dim[k]][pre.node[k]] = pre.weight[k];
+    f.omegaDrive = driveFrequency(lat, pre.mask, unitDrive, &f.driveIterations);
+    if (!(f.omegaDrive > 0)) f.omegaDrive = f.omega1;
+    return f;
+}
+
 void Prescribed::follow(double U, double Ustart, double dt, Field3& u, Field3& v) const {
     for (std::size_t k = 0; k < node.size(); ++k)
         u[dim[k]][node[k]] = weight[k] * U, v[dim[k]][node[k]] = weight[k] * (U - Ustart) / dt;

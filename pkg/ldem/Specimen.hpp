@@ -14,6 +14,7 @@
 #include "ldem/Lattice.hpp"
 #include "ldem/Loading.hpp"
 #include "ldem/Material.hpp"
+#include "ldem/Modal.hpp"
 #include "ldem/ParameterTable.hpp"
 
 namespace ldem {
@@ -28,6 +29,10 @@ struct Prescribed {
     // Each DOF at weight x U, its velocity weight x (U - Ustart) / dt: the drive's over the step from Ustart.
     void follow(double U, double Ustart, double dt, Field3& u, Field3& v) const;
 };
+
+// omega_1 and omega_max of the lattice under its prescribed DOFs (refused if they leave a mechanism), and
+// omega_d of its drive (Modal.hpp), omega_1 for a drive that moves nothing (a held specimen's weight).
+Frequencies specimenFrequencies(const Lattice& lat, const Prescribed& pre);
 
 // A displacement read at every record: u_dim[b] - u_dim[a] (a < 0: u_dim[b] alone),
 // e.g. the crack mouth opening between two nodes across a notch.
