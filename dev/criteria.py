@@ -27,9 +27,7 @@ def load(out):
 
 def whole(r):
     """(a) over every record after the peak, the fall included: reported, not judged."""
-    d = r["F"] - criteria.running_mean(r["t"], r["F"], r["T"])
-    w = (np.arange(len(d)) >= int(np.argmax(r["F"]))) & ~np.isnan(d)
-    return math.sqrt(np.mean(d[w] ** 2)) / r["F"].max() if np.any(w) else float("nan")
+    return criteria.rms_distance(r["t"], r["F"], r["T"], np.arange(len(r["F"])) >= int(np.argmax(r["F"])))
 
 
 def energy_at(r, strain, at_loss):

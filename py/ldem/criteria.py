@@ -51,12 +51,18 @@ def judged(t, F, T):
     return before | (t - T / 2 >= t[end[0]] + AFTER_FALL_PERIODS * T)
 
 
-def ringing(t, F, T) -> float:
-    """(a): rms(F - its running mean over T) over the judged records, over the peak; NaN where none is."""
+def rms_distance(t, F, T, records) -> float:
+    """rms(F - its running mean over T) over the records (a mask) where the mean is defined, over the
+    peak; NaN where none is."""
     F = np.asarray(F, float)
     d = F - running_mean(t, F, T)
-    w = judged(t, F, T) & ~np.isnan(d)
+    w = np.asarray(records, bool) & ~np.isnan(d)
     return math.sqrt(float(np.mean(d[w] ** 2))) / float(F.max()) if np.any(w) else float("nan")
+
+
+def ringing(t, F, T) -> float:
+    """(a): the rms distance over the judged records."""
+    return rms_distance(t, F, T, judged(t, F, T))
 
 
 def periods_after_start(t, F, T, ramp_time: float) -> float:
