@@ -128,45 +128,42 @@ void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers
 
 void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                        DashpotState& d, Field3& f) {
+    // The components by pointer: Field3's [c] selects its vector by a branch at every use.
+    const double* vc[3] = {v.x.data(), v.y.data(), v.z.data()};
+    double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
+    double* wc[3] = {d.velocity.x.data(), d.velocity.y.data(), d.velocity.z.data()};
+    const double* invMass = lat.invMass.data();
     // v~ of the owned nodes, then of the halo's from their owners (a slab's halo masses are partial: MPI)
-    Field3& w = d.velocity;
 #pragma omp parallel for schedule(static)
     for (int m = lat.ownBegin; m < lat.ownEnd; ++m) {
         const auto [first, count] = lat.layerNodes(m);
-        for (std::int32_t i = first; i < first + count; ++i)
-            for (int c = 0; c < 3; ++c)
-                w[c][i] = (mask[i] >> c) & 1 ? v[c][i] : v[c][i] + d.halfDt * f[c][i] * lat.invMass[i];
-    }
-    exchangeHalo(lat, w);
-    // Calls bar(b, A, B, fam, dvec, m) for every acting bar, d its current vector.
-    auto forActing = [&](auto bar) {
-        for (int m = 0; m < lat.forceLayers(); ++m)
-            for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
-                if (!d.rows[std::size_t(r)]) continue;
-                const BarRow& row = lat.barRows[r];
-                const BarFamily& fam = lat.families[row.family];
-                for (int p = 0; p < row.count; ++p) {
-                    if (d.coefficient[std::size_t(row.first + p)] == 0) continue;
-                    const std::int32_t A = row.nodeA + p, B = row.nodeB + p;
-                    const double dv[3] = {fam.d0[0] + u.x[B] - u.x[A], fam.d0[1] + u.y[B] - u.y[A],
-                                          fam.d0[2] + u.z[B] - u.z[A]};
-                    bar(row.first + p, A, B, fam, dv, m);
-                }
-            }
-    };
-    // Every force from v~ first (f still f*), then onto the nodes.
-    forActing([&](std::int64_t b, std::int32_t A, std::int32_t B, const BarFamily& fam, const double* dvec, int m) {
-        double s = 0, sp = 0;
         for (int c = 0; c < 3; ++c)
-            s += dvec[c] * (v[c][B] - v[c][A]), sp += dvec[c] * (w[c][B] - w[c][A]);
-        const double F = d.coefficient[std::size_t(b)] * sp * fam.invL;
-        d.force[std::size_t(b)] = F;
-        d.opening[m] += s * fam.invL * F * d.halfDt;
-    });
-    forActing([&](std::int64_t b, std::int32_t A, std::int32_t B, const BarFamily& fam, const double* dvec, int) {
-        const double Fl = d.force[std::size_t(b)] * fam.invL;  // tension pulls A towards B, along +d
-        for (int c = 0; c < 3; ++c) f[c][A] += Fl * dvec[c], f[c][B] -= Fl * dvec[c];
-    });
+            for (std::int32_t i = first; i < first + count; ++i)
+                wc[c][i] = (mask[i] >> c) & 1 ? vc[c][i] : vc[c][i] + d.halfDt * fc[c][i] * invMass[i];
+    }
+    exchangeHalo(lat, d.velocity);
+    // One pass over the acting bars: each force from v~ (which f no longer moves), then onto the nodes.
+    for (int m = 0; m < lat.forceLayers(); ++m)
+        for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
+            if (!d.rows[std::size_t(r)]) continue;
+            const BarRow& row = lat.barRows[r];
+            const BarFamily& fam = lat.families[row.family];
+            for (int p = 0; p < row.count; ++p) {
+                const std::int64_t b = row.first + p;
+                if (d.coefficient[std::size_t(b)] == 0) continue;
+                const std::int32_t A = row.nodeA + p, B = row.nodeB + p;
+                const double dvec[3] = {fam.d0[0] + u.x[B] - u.x[A], fam.d0[1] + u.y[B] - u.y[A],
+                                        fam.d0[2] + u.z[B] - u.z[A]};
+                double s = 0, sp = 0;
+                for (int c = 0; c < 3; ++c)
+                    s += dvec[c] * (vc[c][B] - vc[c][A]), sp += dvec[c] * (wc[c][B] - wc[c][A]);
+                const double F = d.coefficient[std::size_t(b)] * sp * fam.invL;
+                d.force[std::size_t(b)] = F;
+                d.opening[m] += s * fam.invL * F * d.halfDt;
+                const double Fl = F * fam.invL;  // tension pulls A towards B, along +d
+                for (int c = 0; c < 3; ++c) fc[c][A] += Fl * dvec[c], fc[c][B] -= Fl * dvec[c];
+            }
+        }
 }
 
 BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarLaws& law) {
