@@ -81,9 +81,7 @@ def test_the_paced_drive_gives_the_quarter_rates_fracture_energy(cube048):
 
 def test_the_pace_leaves_a_notched_beams_peak_alone(tmp_path_factory):
     """examples/beam_3pb.toml (L0 10 mm, 0.1 D/s): the beam following its platen has K/W near 1e-3, so a pace on K
-    braked and released in turn and raised the peak by 11 % (0.9897 to 1.0994 MPa); on K_own it was 0.9902 MPa.
-    With the drive timed on omega_d (8.2 times omega_1 on this beam) the paced peak is 1.0174 against 1.0006 MPa
-    (+1.7 %): 3 % still tells the pace on K_own from the pace on K."""
+    braked and released in turn and raised the peak by 11 % (0.9897 to 1.0994 MPa); on K_own it is 0.9902 MPa."""
     from conftest import ROOT, run_cli
 
     def beam(*more):
@@ -96,7 +94,7 @@ def test_the_pace_leaves_a_notched_beams_peak_alone(tmp_path_factory):
     unpaced = beam()
     paced = beam("--set", "tail_drive=adaptive", "--set", "crack_pace=0.0625")
     assert paced["steps"] != unpaced["steps"]  # the pace acted
-    assert abs(paced["peak_stress_MPa"] / unpaced["peak_stress_MPa"] - 1) < 0.03
+    assert abs(paced["peak_stress_MPa"] / unpaced["peak_stress_MPa"] - 1) < 0.005
 
 
 
