@@ -22,14 +22,18 @@ def tiny(D, notch, material, seed, x_ref):
 
 
 def test_the_fit_recovers_a_tiny_beams_own_parameters_within_its_tolerance(tmp_path):
+    """On the protocol's three seeds (FIT_SEEDS): one seed of a beam 4 modules deep moves its peak by up to 2 %
+    between neighbouring parameters (which bar breaks first), the tolerance itself, and its fit wanders."""
     truth = dict(START, eps_p=1.25 * START["eps_p"], Gf_mean=0.8 * START["Gf_mean"])
-    run = tiny(TINY[0] * 1e-3, TINY[1], truth, 1, 0.03).run()
-    curve = (np.asarray(run.curve["gauge_m"]) * 1e3, np.asarray(run.curve["stress_MPa"]) * 1e3)
-    x_ref = cq.cmod_at_peak(curve)
-    q = cq.quantities(curve, x_ref)
-    assert not math.isnan(q["work_J"])
-    t = transfer.Target(TINY, q["peak_kN"], x_ref, q["work_J"])
-    result = transfer.fit(t, START, transfer.evaluator(str(tmp_path), t, 1, tiny, seeds=(1,), log=lambda s: None),
+    x_ref, qs = None, []
+    for seed in transfer.FIT_SEEDS:
+        run = tiny(TINY[0] * 1e-3, TINY[1], truth, seed, 0.03).run()
+        curve = (np.asarray(run.curve["gauge_m"]) * 1e3, np.asarray(run.curve["stress_MPa"]) * 1e3)
+        x_ref = x_ref or cq.cmod_at_peak(curve)
+        qs.append(cq.quantities(curve, x_ref))
+    assert not any(math.isnan(q["work_J"]) for q in qs)
+    t = transfer.Target(TINY, np.mean([q["peak_kN"] for q in qs]), x_ref, np.mean([q["work_J"] for q in qs]))
+    result = transfer.fit(t, START, transfer.evaluator(str(tmp_path), t, 1, tiny, log=lambda s: None),
                           log=lambda s: None)
     assert result["converged"], result["rounds"]
     best = result["rounds"][result["round"]]
