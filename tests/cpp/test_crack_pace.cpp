@@ -74,6 +74,20 @@ TEST(CrackPace, BrakesWithinTheInertiaBudgetAndReleasesByTheRatio) {
     EXPECT_DOUBLE_EQ(CrackPace::next(free, 1.0, 0.0625, peak), 0.0625);
 }
 
+// T / t_r bounds the change of a record either way: from 1 to crack_pace over no less than
+// the smooth start's time, so that the drive's own mode is not set ringing.
+TEST(CrackPace, ChangesNoFasterThanTheSmoothStart) {
+    CrackPace::Limits l = limits();
+    l.glide = 0.05;  // T / t_r: t_r is 20 records
+    const double peak = 2e6;  // the brake alone would allow 0.2
+    EXPECT_DOUBLE_EQ(CrackPace::next(l, 1.0, 0.0625, peak), 0.95);
+    EXPECT_DOUBLE_EQ(CrackPace::next(l, 0.1, 0.0625, peak), 0.0625);  // not below the target
+    EXPECT_DOUBLE_EQ(CrackPace::next(l, 0.9, 1.0, peak), 0.95);       // the ratio alone would allow 0.99
+    EXPECT_DOUBLE_EQ(CrackPace::next(l, 0.0625, 1.0, peak), 0.0625 * 1.1);  // the ratio, the tighter here
+    l.brake = 0;
+    EXPECT_DOUBLE_EQ(CrackPace::next(l, 1.0, 0.0625, peak), 0.95);  // no brake: the glide still bounds it
+}
+
 // The clock over a record interval of R steps ramps the pace linearly from P_0 to P_1:
 // tau advances by dt sum_k (P_0 + (P_1 - P_0)(k + 1)/R) = dt (R P_0 + (P_1 - P_0)(R + 1)/2).
 TEST(CrackPace, TheClockIntegratesTheRampedPace) {

@@ -81,7 +81,7 @@ void AdaptiveTailDrive::setUp(const RunSetup& r) {
     lim_ = {program().speedup, p_.tailMaxSpeedup, p_.tailLoad, p_.tailDrag, p_.tailStep, s.splitWindow,
             tau > 0 ? column * (1 + Df * tau) : column, tau > 0 ? 0.0 : Df * T, T};
     pace_ = CrackPace({p_.crackPace, p_.crackKinetic, column > 0 ? p_.tailDrag / column : 0.0, p_.tailStep,
-                       p_.crackSecant, p_.crackBand});
+                       p_.crackSecant, p_.crackBand, program().rampTime > 0 ? T / program().rampTime : 0.0});
     tail_ = AdaptiveDrive(lim_);
 }
 

@@ -13,8 +13,9 @@ bool CrackPace::nearPeak(const Limits& l, double secant, double elasticSecant, d
 }
 
 double CrackPace::next(const Limits& l, double P0, double target, double peakStress) {
-    if (target >= P0) return std::min(target, P0 * l.step);
-    return l.brake > 0 ? std::max(target, P0 - l.brake * peakStress) : target;
+    const double glide = l.glide > 0 ? l.glide : 1.0;
+    if (target >= P0) return std::min({target, P0 * l.step, P0 + glide});
+    return std::max({target, l.brake > 0 ? P0 - l.brake * peakStress : target, P0 - glide});
 }
 
 void CrackPace::record(double kinetic, double work, double fracture, bool lost, double peakStress, double stress,

@@ -6,7 +6,10 @@
 // quasi-static motion, Integrator.hpp) or the curve is near its peak (its secant
 // sigma/eps < crack_secant x the elastic one, sigma >= crack_band x the peak so far);
 // else 1. P moves towards it down by at most tail_drag peak T / (rho H v0), up by
-// the ratio tail_step, linearly over the record's R steps:
+// the ratio tail_step, and either way by at most T / t_r, the smooth start's mean
+// slope (t_r: two periods of the mode the drive moves): a change of the drive's
+// speed within a period would set that mode ringing by (m omega_d dv) and the
+// ringing rides on the peak. Linearly over the record's R steps:
 //   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R).
 // crack_pace 1: tau = t, bit for bit. Measured: results/dynamics/README.md.
 #pragma once
@@ -23,6 +26,7 @@ public:
         double step = 1.1;      // tail_step
         double secant = 0;      // crack_secant (0: off)
         double band = 0.5;      // crack_band
+        double glide = 0;       // the largest change of P over a record: T / t_r (0: no bound)
     };
     CrackPace() = default;
     explicit CrackPace(const Limits& l) : lim_(l) {}
