@@ -37,8 +37,30 @@ struct DashpotState {
     bool predicted = false;       // read at the predicted velocity: the forces in a second pass
     std::vector<double> coefficient;  // predicted: per bar, beta (EA/L) r of this step [N s/m]
     std::vector<std::uint8_t> rows;   // predicted: per bar row, whether some bar of it has a dashpot now
-    Field3 velocity;                  // predicted: v~ of every node at this step [m/s]
+    std::vector<std::uint8_t> layers; // predicted: per bar layer, whether some row of it has
+    bool slab = false;                // predicted: a slab's halo takes v~ from its owner, so every layer waits
+    Field3 velocity;                  // predicted: v~ of the nodes that wait, at this step [m/s]
+    // Whether node layer m waits for the dashpots' forces: a bar of layer k pulls node layers k..k+2,
+    // so m waits while a dashpot acts in bar layers m-2..m. The others move as soon as they have f*.
+    bool waits(int m) const {
+        return slab || layers[std::size_t(m)] || (m >= 1 && layers[std::size_t(m - 1)]) ||
+               (m >= 2 && layers[std::size_t(m - 2)]);
+    }
 };
+
+// Their state for a lattice of `bars` bars in `rows` rows and `layers` layers, `nodes` nodes (slab: a part of a
+// lattice split over ranks), before the first step.
+inline DashpotState dashpotState(double beta, std::int64_t bars, int layers, std::int64_t rows, std::int64_t nodes,
+                                 bool predicted, bool slab = false) {
+    DashpotState d;
+    d.beta = beta;
+    d.force.assign(std::size_t(bars), 0.0), d.closing.assign(std::size_t(layers), 0.0);
+    d.opening.assign(std::size_t(layers), 0.0);
+    if (predicted)
+        d.predicted = true, d.coefficient.assign(std::size_t(bars), 0.0), d.rows.assign(std::size_t(rows), 0),
+        d.layers.assign(std::size_t(layers), 0), d.slab = slab, d.velocity = Field3(nodes);
+    return d;
+}
 
 // What the force pass needs of them: their state and v(n-1/2); none while state is null.
 struct DashpotPass {

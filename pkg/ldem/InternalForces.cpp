@@ -133,9 +133,11 @@ void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask
     double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
     double* wc[3] = {d.velocity.x.data(), d.velocity.y.data(), d.velocity.z.data()};
     const double* invMass = lat.invMass.data();
-    // v~ of the owned nodes, then of the halo's from their owners (a slab's halo masses are partial: MPI)
+    // v~ of the owned nodes that wait (an acting bar's ends do), then of the halo's from their
+    // owners (a slab's halo masses are partial: MPI)
 #pragma omp parallel for schedule(static)
     for (int m = lat.ownBegin; m < lat.ownEnd; ++m) {
+        if (!d.waits(m)) continue;
         const auto [first, count] = lat.layerNodes(m);
         for (int c = 0; c < 3; ++c)
             for (std::int32_t i = first; i < first + count; ++i)

@@ -138,6 +138,7 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
               const DashpotPass& dash) {
     if (dash.state) dash.state->closing[m] = dash.state->opening[m] = 0.0;
     std::uint8_t* actingRows = dash.state && dash.state->predicted ? dash.state->rows.data() : nullptr;
+    std::uint8_t acting = 0;
     for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
         if (actingRows) actingRows[r] = 0;
         const BarRow& row = lat.barRows[r];
@@ -164,9 +165,10 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
         }
         if constexpr (!Law::kElasticOnly) {
             const bool deferred = lawRow(rowLaw, path, fam, row, m, EA, EAend, ax, ay, az, bx, by, bz, dash, gx, gy, gz);
-            if (actingRows) actingRows[r] = deferred;
+            if (actingRows) actingRows[r] = deferred, acting |= deferred;
         }
     }
+    if (actingRows) dash.state->layers[std::size_t(m)] = acting;
 }
 
 // f of every node of layer m: the sum of +-g over its bars, in incidence order.
@@ -199,7 +201,7 @@ void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Fiel
 // The dashpots read at the predicted velocity (BarDashpot.hpp), once f holds every node's f*
 // (the bars' forces; the weight, the same on both ends of a bar, and the mass damping,
 // D_f dt/2 ~ 1e-6, are left out): v~ = v(n-1/2) + dt/2 f*/m on free DOFs, v on held ones
-// (d.velocity: the owned nodes', then the halo's from their owners);
+// (d.velocity: the owned nodes' of the layers that wait, then the halo's from their owners);
 // F = coefficient d.(v~_B - v~_A)/L of each bar whose row acts, kept, its opening work added,
 // then added to f. In bar order, on one thread: the same bits for any number of threads.
 void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,

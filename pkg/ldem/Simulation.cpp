@@ -30,7 +30,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     load_ = drivenLoading(mat_, load_, run_, freq_.omegaDrive, lat_.L0);
     parts_ = Parts(mat_, load_, run_, {freq_.omega1, freq_.omegaMax, freq_.omegaDrive, lat_.numBars(),
                                        lat_.numLayers(), std::int64_t(lat_.barRows.size()), lat_.numNodes(),
-                                       meas_.gaugeLength, openingControl()});
+                                       meas_.gaugeLength, openingControl(), lat_.isSlab()});
     dt_ = chosenTimeStep(run_, stableTimeStepLimit(), parts_.stepFactor(), freq_.omegaMax);
     const double meanSpeed = drive().v0 * std::abs(meas_.meanDriveWeight);
     const int defaultEvery = defaultRecordEvery(mat_.epsP, meas_.gaugeLength, meanSpeed, dt_);
@@ -99,22 +99,26 @@ void Simulation::computeForces() {
 
 void Simulation::step() {
     weighNextStep();
-    if (parts_.deferred())  // the dashpots' forces wait for every node's (BarDashpots.hpp: predicted)
-        computeForces(), advanceLayers();
-    else  // one visit of the law per step: the layered pass is compiled for it
-        layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+    // A node layer moves as soon as it has its forces, unless it waits for a damping's that
+    // need every node's (BarDashpots.hpp: predicted); those layers move once they have them.
+    // One visit of the law per step: the layered pass is compiled for it.
+    layered([this](int m) {
+        if (!parts_.waits(m)) layerDamping_[m] = advanceNodes(m);
+    });
+    if (parts_.deferred()) parts_.afterForces(lat_, pre_.mask, u_, v_, f_), advanceLayers(true);
     finishStep();
 }
 
 void Simulation::advance() {
     weighNextStep();
-    advanceLayers();
+    advanceLayers(false);
     finishStep();
 }
 
-void Simulation::advanceLayers() {
+void Simulation::advanceLayers(bool waiting) {
 #pragma omp parallel for schedule(static)
-    for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
+    for (int m = 0; m < lat_.numLayers(); ++m)
+        if (!waiting || parts_.waits(m)) layerDamping_[m] = advanceNodes(m);
 }
 
 void Simulation::finishStep() {

@@ -109,7 +109,7 @@ private:
     double advanceNodes(int m) {  // the owned nodes of layer m; the halo's are moved by their owner
         return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
     }
-    void advanceLayers();  // every node layer, once every force is known
+    void advanceLayers(bool waiting);  // every node layer (or those that waited), once every force is known
     CentralDifference nodeRule();
     void weighNextStep() { externalWork_ -= weight_.stepTo(step_, lat_, pre_.mask, u_, v_), cd_.gz = weight_.gz(); }
     void finishStep();  // damping and external work, prescribed DOFs, clock

@@ -37,7 +37,8 @@ struct ElasticWithDashpots {
     static constexpr bool kElasticOnly = false;
     bool withElastic = true;
     bool someBars = false;
-    std::int64_t first = 0;  // the row's first bar
+    std::int64_t from = 0, below = -1;  // below >= 0: a dashpot on the bars numbered [from, below) only
+    std::int64_t first = 0;   // the row's first bar
     ElasticWithDashpots forRow(std::int32_t, std::int64_t rowFirst) const {
         ElasticWithDashpots row = *this;
         row.first = rowFirst;
@@ -52,6 +53,7 @@ struct ElasticWithDashpots {
     double operator()(std::int64_t p, double EA, const Stretch& s, double& gx, double& gy, double& gz) const {
         const double Fl = withElastic ? s.elasticForcePerLength(EA) : 0.0;
         gx = Fl * s.dx, gy = Fl * s.dy, gz = Fl * s.dz;
+        if (below >= 0) return double(first + p >= from && first + p < below);
         return someBars ? double(hashedUniform(11, std::uint64_t(first + p), 0) < 0.5) : 1.0;
     }
 };
@@ -70,26 +72,27 @@ Cube cube3() {
 }
 
 DashpotState dashpots(const Lattice& lat, double beta, double dt, bool predicted = false) {
-    DashpotState d;
-    d.beta = beta, d.halfDt = 0.5 * dt;
-    d.force.assign(lat.numBars(), 0.0), d.closing.assign(lat.numLayers(), 0.0), d.opening.assign(lat.numLayers(), 0.0);
-    if (predicted)
-        d.predicted = true, d.coefficient.assign(lat.numBars(), 0.0), d.rows.assign(lat.barRows.size(), 0),
-        d.velocity = Field3(lat.numNodes());
+    DashpotState d = dashpotState(beta, lat.numBars(), lat.numLayers(), std::int64_t(lat.barRows.size()),
+                                  lat.numNodes(), predicted);
+    d.halfDt = 0.5 * dt;
     return d;
 }
 
 // One step of central differences with the dashpots of d: in one pass (lagged), or the force
-// pass, then the dashpots at the predicted velocity, then the nodes (predicted: Simulation's way).
+// pass moving the layers that do not wait, then the dashpots at the predicted velocity, then
+// the layers that waited (predicted: Simulation's way).
 void step(const Lattice& lat, const std::vector<std::uint8_t>& mask, const ElasticWithDashpots& law,
           const CentralDifference& cd, DashpotState& d, BarForceBuffers& g, Field3& u, Field3& v, Field3& f) {
     if (!d.predicted) {
         layeredForces(lat, u, g, f, law, [&](int m) { advanceLayer(lat, m, cd, mask, f, u, v); }, DashpotPass{&d, &v});
         return;
     }
-    layeredForces(lat, u, g, f, law, [](int) {}, DashpotPass{&d, &v});
+    layeredForces(lat, u, g, f, law, [&](int m) {
+        if (!d.waits(m)) advanceLayer(lat, m, cd, mask, f, u, v);
+    }, DashpotPass{&d, &v});
     predictedDashpots(lat, mask, u, v, d, f);
-    for (int m = 0; m < lat.numLayers(); ++m) advanceLayer(lat, m, cd, mask, f, u, v);
+    for (int m = 0; m < lat.numLayers(); ++m)
+        if (d.waits(m)) advanceLayer(lat, m, cd, mask, f, u, v);
 }
 
 Field3 randomField(std::int64_t n, unsigned seed, const std::vector<std::uint8_t>& mask) {
@@ -340,6 +343,44 @@ TEST(BarDashpots, PredictedReachTheUndampedStableStep) {
     }
     EXPECT_FALSE(stable(0.7, 1.01 * limit * predictedStepFactor(0.7), false));
     EXPECT_FALSE(freeVibrationEnergy(s, 0.3, 0.99 * limit, 3000, false) < 10 * e0);  // lagged: unstable there
+}
+
+// Only the node layers an acting dashpot pulls wait for the predicted pass; the others move in
+// the force sweep. Dashpots in one bar layer of a 3 x 3 x 8 cube (they pull three node layers):
+// the run is the one where every layer waits (a slab's way), bit for bit.
+TEST(BarDashpots, OnlyTheLayersTheActingDashpotsPullWait) {
+    Material m;
+    LoadingParams lp;
+    const Specimen sp = cubeTestSpecimen(3, 3, 8, kL0, m, lp);
+    const Lattice& lat = sp.lattice;
+    const auto& mask = sp.prescribed.mask;
+    const double omegaMax = latticeFrequencies(lat, mask).omegaMax, dt = 0.9 * 2 / omegaMax;
+    ElasticWithDashpots law;
+    const int k = lat.numLayers() / 2;  // the bar layer with the dashpots
+    law.from = lat.barRows[std::size_t(lat.barLayerStart[k])].first;
+    law.below = lat.barRows[std::size_t(lat.barLayerStart[k + 1])].first;
+    const CentralDifference cd(dt, 0.0);
+    auto run = [&](bool everyLayer, int& waiting) {
+        DashpotState d = dashpots(lat, dashpotBeta(0.5, omegaMax), dt, true);
+        d.slab = everyLayer;
+        Field3 u = randomField(lat.numNodes(), 5, mask), v(lat.numNodes()), f(lat.numNodes());
+        for (double* c : {u.x.data(), u.y.data(), u.z.data()})
+            for (std::int64_t i = 0; i < lat.numNodes(); ++i) c[i] *= 1e-9;
+        BarForceBuffers g;
+        for (int k = 0; k < 200; ++k) step(lat, mask, law, cd, d, g, u, v, f);
+        waiting = 0;
+        for (int l = 0; l < lat.numLayers(); ++l) waiting += d.waits(l);
+        return u;
+    };
+    int some = 0, all = 0;
+    const Field3 a = run(false, some), b = run(true, all);
+    EXPECT_EQ(some, 3);
+    EXPECT_EQ(all, lat.numLayers());
+    for (std::int64_t i = 0; i < lat.numNodes(); ++i) {
+        ASSERT_EQ(a.x[i], b.x[i]) << i;
+        ASSERT_EQ(a.y[i], b.y[i]) << i;
+        ASSERT_EQ(a.z[i], b.z[i]) << i;
+    }
 }
 
 // The damping ratio a mode gets (the 3^3 cube's omega_1 and omega_max, dense modes, dashpots on

@@ -59,19 +59,17 @@ public:
     };
     BarDashpots() = default;  // none
     BarDashpots(const Params& p, const DampingSetup& s) : zeta_(p.zetaHigh) {
-        d_.beta = dashpotBeta(p.zetaHigh, s.omegaMax);
-        if (on()) d_.force.assign(std::size_t(s.bars), 0.0), d_.closing.assign(s.layers, 0.0), d_.opening.assign(s.layers, 0.0);
-        if (on() && p.dashpotPredicted)
-            d_.predicted = true, d_.coefficient.assign(std::size_t(s.bars), 0.0), d_.rows.assign(std::size_t(s.rows), 0),
-            d_.velocity = Field3(s.nodes);
+        const double beta = dashpotBeta(p.zetaHigh, s.omegaMax);
+        if (beta > 0) d_ = dashpotState(beta, s.bars, s.layers, s.rows, s.nodes, p.dashpotPredicted, s.slab);
     }
     bool on() const { return d_.beta > 0; }
     double coefficient() const { return 0.0; }  // no mass-proportional term
     double lag() const { return 0.0; }
     double beta() const { return d_.beta; }  // [s]
     double stepFactor() const { return d_.predicted ? predictedStepFactor(zeta_) : dampedStepFactor(zeta_); }
-    // Predicted: the nodes wait for the dashpots' forces, which wait for every node's f*.
+    // Predicted: the nodes the acting dashpots pull wait for their forces, which wait for every node's f*.
     bool deferred() const { return d_.predicted; }
+    bool waits(int m) const { return d_.predicted && d_.waits(m); }
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                      Field3& f) {
         if (d_.predicted) predictedDashpots(lat, mask, u, v, d_, f);

@@ -77,6 +77,7 @@ public:
     }
     DashpotPass barPass(const Field3&) const { return {}; }  // no bar forces
     bool deferred() const { return false; }
+    bool waits(int) const { return false; }
     void afterForces(const Lattice&, const std::vector<std::uint8_t>&, const Field3&, const Field3&, Field3&) {}
     double stepWork(int) const { return 0.0; }
     double closingWork(int) const { return 0.0; }

@@ -38,6 +38,7 @@ struct DampingSetup {
     int layers = 0;                   // bar layers
     std::int64_t rows = 0;            // bar rows
     std::int64_t nodes = 0;           // of the lattice (its node ids)
+    bool slab = false;                // a part of a lattice split over ranks (Lattice::isSlab)
 };
 
 // The run's set-up, complete: every drive and stop rule is told it once (setUp), before the first step.

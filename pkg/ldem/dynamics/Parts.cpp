@@ -49,7 +49,7 @@ LoadingParams drivenLoading(const Material& m, const LoadingParams& l, const Run
 }
 
 Parts::Parts(const Material& m, const LoadingParams& load, const RunParams& run, const PartsSetup& s)
-    : dampings_(makeDampings(run, {s.omega1, s.omegaMax, s.bars, s.layers, s.rows, s.nodes})),
+    : dampings_(makeDampings(run, {s.omega1, s.omegaMax, s.bars, s.layers, s.rows, s.nodes, s.slab})),
       omegaDrive_(s.omegaDrive) {
     const double pi = 3.14159265358979323846;
     splitWindow_ = run.splitWindow > 0 ? run.splitWindow : 2 * (2 * pi / s.omega1);

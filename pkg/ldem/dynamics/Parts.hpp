@@ -33,6 +33,7 @@ struct PartsSetup {
     std::int64_t nodes = 0;           // of the lattice
     double gaugeLength = 0;           // [m]
     bool openingControl = false;      // the specimen has a controlled probe
+    bool slab = false;                // a part of a lattice split over ranks (Lattice::isSlab)
 };
 
 // The loading as driven: rate_periods > 0 sets strain_rate from the drive's own
@@ -77,6 +78,12 @@ public:
     bool deferred() const {
         bool wait = false;
         eachDamping([&](const auto& d) { wait = wait || d.deferred(); });
+        return wait;
+    }
+    // Whether node layer m waits for those forces in this step (asked once its bar layers m-2..m are done).
+    bool waits(int m) const {
+        bool wait = false;
+        eachDamping([&](const auto& d) { wait = wait || d.waits(m); });
         return wait;
     }
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,

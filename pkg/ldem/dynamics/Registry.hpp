@@ -110,6 +110,7 @@ constexpr bool isDamping() {
                   "nodeUpdate(cd)");
     static_assert(std::is_same_v<decltype(std::declval<D&>().barPass(Field3())), DashpotPass>, "barPass(v)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().deferred()), bool>, "deferred()");
+    static_assert(std::is_same_v<decltype(std::declval<const D&>().waits(0)), bool>, "waits(m)");
     static_assert(std::is_void_v<decltype(std::declval<D&>().afterForces(
                       std::declval<const Lattice&>(), std::declval<const std::vector<std::uint8_t>&>(),
                       std::declval<const Field3&>(), std::declval<const Field3&>(), std::declval<Field3&>()))>,
