@@ -99,12 +99,9 @@ void Simulation::computeForces() {
 
 void Simulation::step() {
     weighNextStep();
-    // A node layer moves as soon as it has its forces, unless it waits for a damping's that
-    // need every node's (BarDashpots.hpp: predicted); those layers move once they have them.
-    // One visit of the law per step: the layered pass is compiled for it.
-    layered([this](int m) {
-        if (!parts_.waits(m)) layerDamping_[m] = advanceNodes(m);
-    });
+    // A node layer moves once it has its forces, unless it waits for a damping's that need every
+    // node's (BarDashpots.hpp: predicted). One visit of the law a step: layered is compiled for it.
+    layered([this](int m) { layerDamping_[m] = parts_.waits(m) ? 0.0 : advanceNodes(m); });
     if (parts_.deferred()) parts_.afterForces(lat_, pre_.mask, u_, v_, f_), advanceLayers(true);
     finishStep();
 }

@@ -104,8 +104,7 @@ private:
     double meanStrainOf(double U) const { return U * std::abs(meas_.meanDriveWeight) / meas_.gaugeLength; }
     // The layered pass with the law's rows and the dampings' bar forces; afterLayer(m) as in layeredForces.
     // In Simulation.cpp only: the kernel needs ldemcore's -fno-math-errno to vectorize its square roots.
-    template <class AfterLayer>
-    void layered(AfterLayer afterLayer);
+    template <class AfterLayer> void layered(AfterLayer afterLayer);
     double advanceNodes(int m) {  // the owned nodes of layer m; the halo's are moved by their owner
         return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
     }
