@@ -37,7 +37,7 @@ struct DashpotState {
     bool predicted = false;       // read at the predicted velocity: the forces in a second pass
     std::vector<double> coefficient;  // predicted: per bar, beta (EA/L) r of this step [N s/m]
     std::vector<std::uint8_t> rows;   // predicted: per bar row, whether some bar of it has a dashpot now
-    std::vector<std::uint8_t> layers; // predicted: per bar layer, whether some row of it has
+    std::vector<std::uint8_t> layers; // predicted: per bar layer, whether some row of it has a dashpot now
     bool slab = false;                // predicted: a slab's halo takes v~ from its owner, so every layer waits
     Field3 velocity;                  // predicted: v~ of the nodes that wait, at this step [m/s]
     // Whether node layer m waits for the dashpots' forces: a bar of layer k pulls node layers k..k+2,

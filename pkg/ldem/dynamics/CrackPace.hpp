@@ -8,7 +8,7 @@
 // else 1. P moves towards it down by at most tail_drag peak T / (rho H v0), up by
 // the ratio tail_step, and either way by at most T / t_r, the smooth start's mean
 // slope (t_r: two periods of the mode the drive moves): a change of the drive's
-// speed within a period would set that mode ringing by (m omega_d dv) and the
+// speed within a period would set that mode ringing (a force of m omega_d dv), and the
 // ringing rides on the peak. Linearly over the record's R steps:
 //   tau(n+1) = tau(n) + dt (P_0 + (P_1 - P_0)(k + 1)/R).
 // crack_pace 1: tau = t, bit for bit. Measured: results/dynamics/README.md.
