@@ -17,13 +17,15 @@
 // Read at the predicted velocity (dashpot_velocity predicted), F_k = beta (EA/L) r
 // d.(v~_B - v~_A)/L, v~ = v(n-1/2) + dt/2 f*/m: the force pass keeps each bar's
 // coefficient beta (EA/L) r and adds the closing work (deferDashpot); once every
-// node has f*, predictedDashpots (InternalForces.hpp) adds F_k to the nodes and
-// the opening work s_k F_k dt/2 (s_k still from v(n-1/2): the same bookkeeping).
+// node has f*, predictedDashpots (InternalForces.hpp) adds F_k to the nodes, each
+// node's in a fixed order (by bar layer, then bar), and the opening work
+// s_k F_k dt/2 (s_k still from v(n-1/2): the same bookkeeping).
 #pragma once
 #include <cstdint>
 #include <vector>
 
 #include "ldem/Field3.hpp"
+#include "ldem/LayerSweep.hpp"
 
 namespace ldem {
 
@@ -40,12 +42,16 @@ struct DashpotState {
     std::vector<std::uint8_t> layers; // predicted: per bar layer, whether some row of it has a dashpot now
     bool slab = false;                // predicted: a slab's halo takes v~ from its owner, so every layer waits
     Field3 velocity;                  // predicted: v~ of the nodes that wait, at this step [m/s]
-    // Whether node layer m waits for the dashpots' forces: a bar of layer k pulls node layers k..k+2,
-    // so m waits while a dashpot acts in bar layers m-2..m. The others move as soon as they have f*.
-    bool waits(int m) const {
-        return slab || layers[std::size_t(m)] || (m >= 1 && layers[std::size_t(m - 1)]) ||
+    BarForceBuffers forces;           // predicted: per bar layer, each bar's dashpot force on its A node [N]
+    // Whether a dashpot acts in bar layers m-2..m, which pull node layer m (a bar of layer k pulls
+    // node layers k..k+2).
+    bool pulled(int m) const {
+        return layers[std::size_t(m)] || (m >= 1 && layers[std::size_t(m - 1)]) ||
                (m >= 2 && layers[std::size_t(m - 2)]);
     }
+    // Whether node layer m waits for the dashpots' forces: while it is pulled, or always in a slab.
+    // The others move as soon as they have f*.
+    bool waits(int m) const { return slab || pulled(m); }
 };
 
 // Their state for a lattice of `bars` bars in `rows` rows and `layers` layers, `nodes` nodes (slab: a part of a

@@ -49,25 +49,6 @@ BarEnergies lawEnergies(const Lattice& lat, const Field3& u, const Law& law) {
 }  // namespace
 
 
-void BarForceBuffers::prepare(const Lattice& lat, int threads) {
-    if (threads == threads_ && base_.size() == std::size_t(lat.numLayers())) return;
-    threads_ = threads;
-    stride_ = std::size_t(lat.maxBarsInLayer);
-    // Buffer index of every layer: own ones at the ends of each range, a ring of three inside.
-    std::vector<int> buffer(lat.numLayers(), 0);
-    int count = 0;
-    for (int t = 0; t < threads; ++t) {
-        const auto [m0, m1] = layerRange(lat.forceLayers(), t, threads);
-        const int ring = count;
-        if (m1 - m0 > 4) count += 3;
-        for (int m = m0; m < m1; ++m)
-            buffer[m] = (m < m0 + 2 || m >= m1 - 2) ? count++ : ring + (m - m0) % 3;
-    }
-    storage_.assign(std::size_t(count) * 3 * stride_, 0.0);
-    base_.resize(lat.numLayers());
-    for (int m = 0; m < lat.numLayers(); ++m) base_[m] = storage_.data() + std::size_t(buffer[m]) * 3 * stride_;
-}
-
 // Every node's sum runs over its incidences in their order, from 0: the same
 // additions, in the same order, in the bulk (a block of nodes at a time, its
 // sums in registers: a loop over f in memory, incidence after incidence, was
@@ -126,46 +107,85 @@ void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers
     layeredForces(lat, x, g, y, LinearBars{}, [](int) {});
 }
 
-void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
-                       DashpotState& d, Field3& f) {
+void predictedVelocity(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& v,
+                       const Field3& f, DashpotState& d) {
     // The components by pointer: Field3's [c] selects its vector by a branch at every use.
     const double* vc[3] = {v.x.data(), v.y.data(), v.z.data()};
-    double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
+    const double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
     double* wc[3] = {d.velocity.x.data(), d.velocity.y.data(), d.velocity.z.data()};
     const double* invMass = lat.invMass.data();
-    // v~ of the owned nodes that wait (an acting bar's ends do), then of the halo's from their
-    // owners (a slab's halo masses are partial: MPI)
+    const auto [first, count] = lat.layerNodes(m);
+    for (int c = 0; c < 3; ++c)
+        for (std::int32_t i = first; i < first + count; ++i)
+            wc[c][i] = (mask[i] >> c) & 1 ? vc[c][i] : vc[c][i] + d.halfDt * fc[c][i] * invMass[i];
+}
+
+void predictedVelocities(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v, const Field3& f,
+                         DashpotState& d) {
 #pragma omp parallel for schedule(static)
-    for (int m = lat.ownBegin; m < lat.ownEnd; ++m) {
-        if (!d.waits(m)) continue;
-        const auto [first, count] = lat.layerNodes(m);
-        for (int c = 0; c < 3; ++c)
-            for (std::int32_t i = first; i < first + count; ++i)
-                wc[c][i] = (mask[i] >> c) & 1 ? vc[c][i] : vc[c][i] + d.halfDt * fc[c][i] * invMass[i];
+    for (int m = lat.ownBegin; m < lat.ownEnd; ++m)
+        if (d.waits(m)) predictedVelocity(lat, m, mask, v, f, d);
+    exchangeHalo(lat, d.velocity);  // (a slab's halo masses are partial: its owner's v~)
+}
+
+void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, DashpotState& d) {
+    if (!d.layers[std::size_t(k)]) return;
+    const Field3& w = d.velocity;
+    double opening = 0;
+    for (std::int32_t r = lat.barLayerStart[k]; r < lat.barLayerStart[k + 1]; ++r) {
+        if (!d.rows[std::size_t(r)]) continue;
+        const BarRow& row = lat.barRows[r];
+        const BarFamily fam = lat.families[row.family];
+        const std::int32_t A = row.nodeA, B = row.nodeB;
+        const double* c = &d.coefficient[std::size_t(row.first)];
+        double* force = &d.force[std::size_t(row.first)];
+        double *gx = d.forces.x(k) + row.inLayer, *gy = d.forces.y(k) + row.inLayer, *gz = d.forces.z(k) + row.inLayer;
+        double sF = 0;  // sum of s F over the row (its opening work, without dt/2L)
+        for (std::int64_t p = 0; p < row.count; ++p) {
+            if (c[p] == 0) {  // (most bars of a row whose dashpots act have none: their ends unread)
+                force[p] = gx[p] = gy[p] = gz[p] = 0;
+                continue;
+            }
+            const double dx = fam.d0[0] + u.x[B + p] - u.x[A + p], dy = fam.d0[1] + u.y[B + p] - u.y[A + p],
+                         dz = fam.d0[2] + u.z[B + p] - u.z[A + p];
+            const double s = dx * (v.x[B + p] - v.x[A + p]) + dy * (v.y[B + p] - v.y[A + p]) +
+                             dz * (v.z[B + p] - v.z[A + p]);
+            const double sp = dx * (w.x[B + p] - w.x[A + p]) + dy * (w.y[B + p] - w.y[A + p]) +
+                              dz * (w.z[B + p] - w.z[A + p]);
+            const double F = c[p] * sp * fam.invL;
+            force[p] = F;
+            sF += s * F;
+            const double Fl = F * fam.invL;  // tension pulls A towards B, along +d
+            gx[p] = Fl * dx, gy[p] = Fl * dy, gz[p] = Fl * dz;
+        }
+        opening += sF * fam.invL;
     }
-    exchangeHalo(lat, d.velocity);
-    // One pass over the acting bars: each force from v~ (which f no longer moves), then onto the nodes.
-    for (int m = 0; m < lat.forceLayers(); ++m)
-        for (std::int32_t r = lat.barLayerStart[m]; r < lat.barLayerStart[m + 1]; ++r) {
+    d.opening[std::size_t(k)] += opening * d.halfDt;
+}
+
+void addDashpotForces(const Lattice& lat, int m, const DashpotState& d, Field3& f) {
+    // The rows of bar layers m-2, m-1, m whose dashpots act, in order: a row's A ends lie in one
+    // node layer, its B ends in one, so a row adds to node layer m at one end, both or neither.
+    for (int k = std::max(0, m - 2); k <= m; ++k) {
+        if (!d.layers[std::size_t(k)]) continue;
+        for (std::int32_t r = lat.barLayerStart[k]; r < lat.barLayerStart[k + 1]; ++r) {
             if (!d.rows[std::size_t(r)]) continue;
             const BarRow& row = lat.barRows[r];
-            const BarFamily& fam = lat.families[row.family];
-            for (int p = 0; p < row.count; ++p) {
-                const std::int64_t b = row.first + p;
-                if (d.coefficient[std::size_t(b)] == 0) continue;
-                const std::int32_t A = row.nodeA + p, B = row.nodeB + p;
-                const double dvec[3] = {fam.d0[0] + u.x[B] - u.x[A], fam.d0[1] + u.y[B] - u.y[A],
-                                        fam.d0[2] + u.z[B] - u.z[A]};
-                double s = 0, sp = 0;
-                for (int c = 0; c < 3; ++c)
-                    s += dvec[c] * (vc[c][B] - vc[c][A]), sp += dvec[c] * (wc[c][B] - wc[c][A]);
-                const double F = d.coefficient[std::size_t(b)] * sp * fam.invL;
-                d.force[std::size_t(b)] = F;
-                d.opening[m] += s * fam.invL * F * d.halfDt;
-                const double Fl = F * fam.invL;  // tension pulls A towards B, along +d
-                for (int c = 0; c < 3; ++c) fc[c][A] += Fl * dvec[c], fc[c][B] -= Fl * dvec[c];
+            const double *gx = d.forces.x(k) + row.inLayer, *gy = d.forces.y(k) + row.inLayer,
+                         *gz = d.forces.z(k) + row.inLayer;
+            const double sign[2] = {lat.layerOfNode(row.nodeA) == m ? 1.0 : 0.0,
+                                    lat.layerOfNode(row.nodeB) == m ? -1.0 : 0.0};
+            const std::int32_t ends[2] = {row.nodeA, row.nodeB};
+            for (int e = 0; e < 2; ++e) {
+                if (sign[e] == 0) continue;
+                double *fx = &f.x[ends[e]], *fy = &f.y[ends[e]], *fz = &f.z[ends[e]];
+                const double sg = sign[e];
+#pragma omp simd
+                for (std::int64_t p = 0; p < row.count; ++p)
+                    fx[p] += sg * gx[p], fy[p] += sg * gy[p], fz[p] += sg * gz[p];
             }
         }
+    }
 }
 
 BarEnergies barEnergies(const Lattice& lat, const Field3& u, const BarLaws& law) {

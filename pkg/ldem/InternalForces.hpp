@@ -23,35 +23,11 @@
 #include "ldem/BarDashpot.hpp"
 #include "ldem/Field3.hpp"
 #include "ldem/Lattice.hpp"
-#include "ldem/Parallel.hpp"
+#include "ldem/LayerSweep.hpp"
 #include "ldem/laws/BarLaw.hpp"
 #include "ldem/laws/Registry.hpp"
 
 namespace ldem {
-
-// Layers [first, second) of thread t out of T.
-inline std::pair<int, int> layerRange(int layers, int t, int T) {
-    return {int(std::int64_t(layers) * t / T), int(std::int64_t(layers) * (t + 1) / T)};
-}
-
-// g, the force of each bar on its A node, for the bar layers in use. Bar layer
-// m is needed until node layer m + 2 is summed, so each thread cycles its
-// layers through three buffers; the two lowest and two highest layers of its
-// range keep their own, because the neighbouring range reads them after the barrier.
-class BarForceBuffers {
-public:
-    // Assigns buffers to layers for `threads` threads (no-op if unchanged).
-    void prepare(const Lattice& lat, int threads);
-    double* x(int m) const { return base_[m]; }
-    double* y(int m) const { return base_[m] + stride_; }
-    double* z(int m) const { return base_[m] + 2 * stride_; }
-
-private:
-    int threads_ = 0;
-    std::size_t stride_ = 0;
-    std::vector<double> storage_;
-    std::vector<double*> base_;  // per layer
-};
 
 // The law, and the dashpots if there are (BarDashpot.hpp), for the n bars of a
 // row, each from its stretch(p) (a SeriesStretch or a BarStretch): the same
@@ -174,38 +150,71 @@ void barLayer(const Lattice& lat, int m, const Field3& u, const BarForceBuffers&
 // f of every node of layer m: the sum of +-g over its bars, in incidence order.
 void nodeLayer(const Lattice& lat, int m, const BarForceBuffers& g, Field3& f);
 
-// Bars then nodes, layer by layer (see the top of this file), inside one parallel region:
+// Bars then nodes, layer by layer (see the top of this file, and LayerSweep.hpp):
 // afterLayer(m) runs once node layer m has its forces and no bar still to be
 // computed reads node layer m, so it may move those nodes. A node layer needs
 // the bars of layers m-2 .. m (bars belong to the layer of their lower end).
 template <class Law, class AfterLayer>
 void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Field3& f, const Law& law,
                    AfterLayer afterLayer, const DashpotPass& dash = {}) {
-#pragma omp parallel
-    {
-#pragma omp single
-        g.prepare(lat, threadCount());
-        const auto [m0, m1] = layerRange(lat.forceLayers(), threadIndex(), threadCount());
-        for (int m = m0; m < m1; ++m) {
-            barLayer(lat, m, u, g, law, dash);
-            if (m0 == 0 || m >= m0 + 2) nodeLayer(lat, m, g, f), afterLayer(m);
-        }
-        // The two lowest layers of a range need (and their nodes are read by)
-        // bars of the range below.
-#pragma omp barrier
-        if (m0 > 0)
-            for (int m = m0; m < std::min(m0 + 2, m1); ++m) nodeLayer(lat, m, g, f), afterLayer(m);
-    }
+    layerSweep(lat, g, [&](int m) { barLayer(lat, m, u, g, law, dash); },
+               [&](int m) { nodeLayer(lat, m, g, f), afterLayer(m); });
 }
 
 // The dashpots read at the predicted velocity (BarDashpot.hpp), once f holds every node's f*
 // (the bars' forces; the weight, the same on both ends of a bar, and the mass damping,
-// D_f dt/2 ~ 1e-6, are left out): v~ = v(n-1/2) + dt/2 f*/m on free DOFs, v on held ones
-// (d.velocity: the owned nodes' of the layers that wait, then the halo's from their owners);
-// F = coefficient d.(v~_B - v~_A)/L of each bar whose row acts, kept, its opening work added,
-// then added to f. In bar order, on one thread: the same bits for any number of threads.
+// D_f dt/2 ~ 1e-6, are left out). v~ = v(n-1/2) + dt/2 f*/m on free DOFs, v on held ones, of
+// the layers that wait (d.velocity: the owned nodes', then the halo's from their owners).
+void predictedVelocities(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v, const Field3& f,
+                         DashpotState& d);
+// The same for node layer m alone (owned).
+void predictedVelocity(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& v,
+                       const Field3& f, DashpotState& d);
+// Bar layer k's dashpots: F = coefficient d.(v~_B - v~_A)/L of each bar whose row acts, kept,
+// its opening work added, its force on node A into d.forces.
+void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, DashpotState& d);
+// f of node layer m += the dashpot forces of the acting rows of bar layers m-2 .. m, in that
+// order: each node's sum in a fixed order.
+void addDashpotForces(const Lattice& lat, int m, const DashpotState& d, Field3& f);
+
+// Then in one layered sweep: the acting bars' forces, each waiting node layer's sum added to
+// f, then afterNodes(m) (which may move it). Every sum in a fixed order, per bar layer and
+// per node: the same bits for any number of threads and ranks.
+template <class AfterNodes>
+void settleLayer(const Lattice& lat, int m, const DashpotState& d, Field3& f, AfterNodes afterNodes) {
+    if (!d.waits(m)) return;
+    if (d.pulled(m)) addDashpotForces(lat, m, d, f);
+    afterNodes(m);
+}
+template <class AfterNodes>
 void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
-                       DashpotState& d, Field3& f);
+                       DashpotState& d, Field3& f, AfterNodes afterNodes) {
+    predictedVelocities(lat, mask, v, f, d);
+    layerSweep(lat, d.forces, [&](int k) { dashpotLayer(lat, k, u, v, d); },
+               [&](int m) { settleLayer(lat, m, d, f, afterNodes); });
+}
+
+// On one thread and one rank they follow the force sweep instead, two layers behind: node
+// layer m has its f* (afterLayer): it moves, or takes v~ if it waits; then bar layer m-2's
+// dashpots (their ends, node layers m-2 .. m, have v~), and node layer m-2 settles (it has
+// bar layers m-4 .. m-2's). No layer waits for a second sweep; the last two settle after it
+// (followedDashpots). The same sums in the same order as predictedDashpots: the same bits.
+template <class AfterNodes>
+void followLayer(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                 DashpotState& d, Field3& f, AfterNodes afterNodes) {
+    if (m == 0) d.forces.prepare(lat, 1);
+    if (d.waits(m)) predictedVelocity(lat, m, mask, v, f, d);
+    else afterNodes(m);
+    if (m < 2) return;
+    dashpotLayer(lat, m - 2, u, v, d);
+    settleLayer(lat, m - 2, d, f, afterNodes);
+}
+template <class AfterNodes>
+void followedDashpots(const Lattice& lat, const Field3& u, const Field3& v, DashpotState& d, Field3& f,
+                      AfterNodes afterNodes) {
+    for (int k = std::max(0, lat.forceLayers() - 2); k < lat.forceLayers(); ++k)
+        dashpotLayer(lat, k, u, v, d), settleLayer(lat, k, d, f, afterNodes);
+}
 
 // f = forces of all bars on the nodes at displacement u with the bar law
 // (laws/BarLaw.hpp); updates the law's state (damage) of every bar.

@@ -47,6 +47,7 @@ Simulation::Simulation(Specimen specimen, const Material& m, const LoadingParams
     stepWork_ = StepWork(lat_, pre_, *support_, *loaded_, meas_.dim);
     cd_ = nodeRule();
     layerDamping_.assign(lat_.numLayers(), 0.0);
+    follow_ = parts_.deferred() && threads_ == 1 && !lat_.isSlab();
 }
 
 // The node update of the dampings, with the free DOFs' weight under gravity (along -z).
@@ -94,28 +95,29 @@ void Simulation::layered(AfterLayer afterLayer) {
 
 void Simulation::computeForces() {
     layered([](int) {});
-    parts_.afterForces(lat_, pre_.mask, u_, v_, f_);
+    parts_.afterForces(lat_, pre_.mask, u_, v_, f_, [](int) {});
 }
 
 void Simulation::step() {
     weighNextStep();
     // A node layer moves once it has its forces, unless it waits for a damping's that need every
     // node's (BarDashpots.hpp: predicted). One visit of the law a step: layered is compiled for it.
-    layered([this](int m) { layerDamping_[m] = parts_.waits(m) ? 0.0 : advanceNodes(m); });
-    if (parts_.deferred()) parts_.afterForces(lat_, pre_.mask, u_, v_, f_), advanceLayers(true);
+    const std::function<void(int)> move = [this](int m) { layerDamping_[m] = advanceNodes(m); };
+    if (follow_) {  // (one thread, one rank: the dampings' forces follow the sweep)
+        layered([&](int m) { layerDamping_[m] = 0.0, parts_.followLayer(m, lat_, pre_.mask, u_, v_, f_, move); });
+        parts_.afterForces(lat_, pre_.mask, u_, v_, f_, move, true);
+    } else {
+        layered([this](int m) { layerDamping_[m] = parts_.waits(m) ? 0.0 : advanceNodes(m); });
+        if (parts_.deferred()) parts_.afterForces(lat_, pre_.mask, u_, v_, f_, move);
+    }
     finishStep();
 }
 
 void Simulation::advance() {
     weighNextStep();
-    advanceLayers(false);
-    finishStep();
-}
-
-void Simulation::advanceLayers(bool waiting) {
 #pragma omp parallel for schedule(static)
-    for (int m = 0; m < lat_.numLayers(); ++m)
-        if (!waiting || parts_.waits(m)) layerDamping_[m] = advanceNodes(m);
+    for (int m = 0; m < lat_.numLayers(); ++m) layerDamping_[m] = advanceNodes(m);
+    finishStep();
 }
 
 void Simulation::finishStep() {

@@ -108,7 +108,6 @@ private:
     double advanceNodes(int m) {  // the owned nodes of layer m; the halo's are moved by their owner
         return lat_.owns(m) ? advanceLayer(lat_, m, cd_, pre_.mask, f_, u_, v_) : 0.0;
     }
-    void advanceLayers(bool waiting);  // every node layer (or those that waited), once every force is known
     CentralDifference nodeRule();
     void weighNextStep() { externalWork_ -= weight_.stepTo(step_, lat_, pre_.mask, u_, v_), cd_.gz = weight_.gz(); }
     void finishStep();  // damping and external work, prescribed DOFs, clock
@@ -137,6 +136,7 @@ private:
     LoadCell supportCell_, loadedCell_;  // the support's and the loaded group's stresses (measure())
     std::int64_t step_ = 0, clamped_ = 0, totalBars_ = 0, totalNodes_ = 0;
     int recordEvery_ = 1, threads_ = 1;
+    bool follow_ = false;  // the dampings' waiting forces follow the force sweep (Parts::followLayer)
     RunProgress progress_;
 };
 

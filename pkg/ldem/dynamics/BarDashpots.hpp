@@ -12,11 +12,13 @@
 //   w_n+1 = (1 - 2 zeta h) w_n - h^2 (1 - zeta h) x_n,   x_n+1 = x_n + w_n+1:
 // det 1 - 2 zeta h, trace 2 - 2 zeta h - h^2 (1 - zeta h), stable iff h <= 2 and
 // zeta h <= 1: the undamped limit while zeta_high omega_max dt <= 1. Its force waits
-// for every node's f* (a second pass over the bars whose dashpots act: BarDashpot.hpp).
+// for every node's f*: a second sweep over the layers whose dashpots act, which moves
+// the nodes they pull (BarDashpot.hpp, InternalForces.hpp: predictedDashpots).
 // Measured: results/dynamics/README.md.
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -70,9 +72,16 @@ public:
     // Predicted: the nodes the acting dashpots pull wait for their forces, which wait for every node's f*.
     bool deferred() const { return d_.predicted; }
     bool waits(int m) const { return d_.predicted && d_.waits(m); }
+    // One thread on one rank: the force sweep's node layer m has its f* (InternalForces.hpp: followLayer).
+    void followLayer(int m, const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u,
+                     const Field3& v, Field3& f, const std::function<void(int)>& move) {
+        if (d_.predicted) ldem::followLayer(lat, m, mask, u, v, d_, f, move);
+    }
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
-                     Field3& f) {
-        if (d_.predicted) predictedDashpots(lat, mask, u, v, d_, f);
+                     Field3& f, const std::function<void(int)>& moveWaiting, bool followed) {
+        if (!d_.predicted) return;
+        if (followed) followedDashpots(lat, u, v, d_, f, moveWaiting);
+        else predictedDashpots(lat, mask, u, v, d_, f, moveWaiting);
     }
     CentralDifference nodeUpdate(const CentralDifference& cd) {
         d_.halfDt = 0.5 * cd.dt;

@@ -9,6 +9,7 @@
 // D_f tau m a (AdaptiveDrive.hpp). Its state: whether it switched, and vbar
 // (node-local: a rank moves the vbar of the nodes it advances).
 #pragma once
+#include <functional>
 #include <stdexcept>
 #include <vector>
 
@@ -78,7 +79,10 @@ public:
     DashpotPass barPass(const Field3&) const { return {}; }  // no bar forces
     bool deferred() const { return false; }
     bool waits(int) const { return false; }
-    void afterForces(const Lattice&, const std::vector<std::uint8_t>&, const Field3&, const Field3&, Field3&) {}
+    void followLayer(int, const Lattice&, const std::vector<std::uint8_t>&, const Field3&, const Field3&, Field3&,
+                     const std::function<void(int)>&) {}
+    void afterForces(const Lattice&, const std::vector<std::uint8_t>&, const Field3&, const Field3&, Field3&,
+                     const std::function<void(int)>&, bool) {}
     double stepWork(int) const { return 0.0; }
     double closingWork(int) const { return 0.0; }
     double openingWork(int) const { return 0.0; }

@@ -74,7 +74,10 @@ public:
         return pass;
     }
     // Whether a damping's bar forces wait for every node's force (then the nodes wait for them), and
-    // those forces, added to f once the force pass gave every node its own.
+    // those forces, added to f once the force pass gave every node its own; moveWaiting(m) then
+    // moves each node layer that waited (a record's step moves none: a no-op). On one thread and
+    // one rank they follow the force pass instead (followLayer(m) once node layer m has its
+    // forces, which moves the layers that do not wait), and afterForces ends them (followed).
     bool deferred() const {
         bool wait = false;
         eachDamping([&](const auto& d) { wait = wait || d.deferred(); });
@@ -86,9 +89,13 @@ public:
         eachDamping([&](const auto& d) { wait = wait || d.waits(m); });
         return wait;
     }
+    void followLayer(int m, const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u,
+                     const Field3& v, Field3& f, const std::function<void(int)>& move) {
+        eachDamping([&](auto& d) { d.followLayer(m, lat, mask, u, v, f, move); });
+    }
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
-                     Field3& f) {
-        eachDamping([&](auto& d) { d.afterForces(lat, mask, u, v, f); });
+                     Field3& f, const std::function<void(int)>& moveWaiting, bool followed = false) {
+        eachDamping([&](auto& d) { d.afterForces(lat, mask, u, v, f, moveWaiting, followed); });
     }
     double stepWork(int m) const {
         double w = 0.0;

@@ -6,6 +6,7 @@
 // (dampingNames: a run applies the ones it names), and Parts.hpp builds it by
 // name. The checks below run at compile time.
 #pragma once
+#include <functional>
 #include <array>
 #include <cstddef>
 #include <string_view>
@@ -111,10 +112,16 @@ constexpr bool isDamping() {
     static_assert(std::is_same_v<decltype(std::declval<D&>().barPass(Field3())), DashpotPass>, "barPass(v)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().deferred()), bool>, "deferred()");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().waits(0)), bool>, "waits(m)");
+    static_assert(std::is_void_v<decltype(std::declval<D&>().followLayer(
+                      0, std::declval<const Lattice&>(), std::declval<const std::vector<std::uint8_t>&>(),
+                      std::declval<const Field3&>(), std::declval<const Field3&>(), std::declval<Field3&>(),
+                      std::declval<const std::function<void(int)>&>()))>,
+                  "followLayer(m, lat, mask, u, v, f, move)");
     static_assert(std::is_void_v<decltype(std::declval<D&>().afterForces(
                       std::declval<const Lattice&>(), std::declval<const std::vector<std::uint8_t>&>(),
-                      std::declval<const Field3&>(), std::declval<const Field3&>(), std::declval<Field3&>()))>,
-                  "afterForces(lat, mask, u, v, f)");
+                      std::declval<const Field3&>(), std::declval<const Field3&>(), std::declval<Field3&>(),
+                      std::declval<const std::function<void(int)>&>(), false))>,
+                  "afterForces(lat, mask, u, v, f, moveWaiting, followed)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().stepWork(0)), double>, "stepWork(m)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().closingWork(0)), double>, "closingWork(m)");
     static_assert(std::is_same_v<decltype(std::declval<const D&>().coefficient()), double>, "coefficient(): D_f");
