@@ -71,6 +71,13 @@ Cube cube3() {
     return s;
 }
 
+// A 3 x 3 x 8 cube: 17 node layers, enough for layer rings of three buffers.
+Specimen tallCube() {
+    Material m;
+    LoadingParams lp;
+    return cubeTestSpecimen(3, 3, 8, kL0, m, lp);
+}
+
 DashpotState dashpots(const Lattice& lat, double beta, double dt, bool predicted = false) {
     DashpotState d = dashpotState(beta, lat.numBars(), lat.numLayers(), std::int64_t(lat.barRows.size()),
                                   lat.numNodes(), predicted);
@@ -347,9 +354,7 @@ TEST(BarDashpots, PredictedReachTheUndampedStableStep) {
 // the force sweep. Dashpots in one bar layer of a 3 x 3 x 8 cube (they pull three node layers):
 // the run is the one where every layer waits (a slab's way), bit for bit.
 TEST(BarDashpots, OnlyTheLayersTheActingDashpotsPullWait) {
-    Material m;
-    LoadingParams lp;
-    const Specimen sp = cubeTestSpecimen(3, 3, 8, kL0, m, lp);
+    const Specimen sp = tallCube();
     const Lattice& lat = sp.lattice;
     const auto& mask = sp.prescribed.mask;
     const double omegaMax = latticeFrequencies(lat, mask).omegaMax, dt = 0.9 * 2 / omegaMax;
@@ -436,9 +441,7 @@ TEST(BarDashpots, PredictedDampingRatioAtOmega1AndOmegaMax) {
 // F = beta (EA/L) r d.(v~_B - v~_A)/L, whatever the layer buffers held before (here NaN): half
 // the bars of two bar layers that share a buffer act, each row with bars that do not.
 TEST(BarDashpots, PredictedForcesAreTheBarByBarSum) {
-    Material m;
-    LoadingParams lp;
-    const Specimen sp = cubeTestSpecimen(3, 3, 8, kL0, m, lp);
+    const Specimen sp = tallCube();
     const Lattice& lat = sp.lattice;
     const auto& mask = sp.prescribed.mask;
     const double dt = 1e-6, beta = 1e-7;
