@@ -255,6 +255,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
         "steps": sim.steps,
         "dt_s": sim.dt,
         "dt_limit_s": sim.dt_limit,
+        "dt_over_undamped_limit": sim.dt * sim.omega_max / 2,  # dt over 2/omega_max, the undamped stable step
         "omega1_rad_s": sim.omega1,
         "omega_d_rad_s": sim.omega_d,  # the drive's own mode: its smooth start and rule (c) (Modal.hpp)
         "omega_max_rad_s": sim.omega_max,

@@ -77,6 +77,16 @@ def test_more_threads_give_the_same_bits(name, threads, one_thread, tmp_path):
         assert short.summary[k] == full.summary[k], k
 
 
+def test_summary_gives_the_step_over_the_undamped_limit(one_thread):
+    """dt / (2/omega_max): at the defaults dt_safety 0.8 of a limit the lagged dashpots
+    (zeta_high 0.2) shorten by sqrt(1 + 0.2^2) - 0.2, 0.656 (docs/performance.md)."""
+    _, _, run = one_thread("cube_0.12_uniform_s1")
+    s = run.summary
+    assert s["dt_over_undamped_limit"] == pytest.approx(s["dt_s"] * s["omega_max_rad_s"] / 2, rel=1e-15)
+    assert s["dt_over_undamped_limit"] == pytest.approx(0.8 * ((1 + 0.2 ** 2) ** 0.5 - 0.2), rel=1e-12)
+    assert f"{s['dt_over_undamped_limit']:.3f}" == "0.656"
+
+
 def test_golden_default_cube_is_what_readme_says():
     """docs/cube.md, `ldem cube`: '0.12 m, seed 1: load lost at 1.07e-3 with 0.566 U_min
     dissipated, separated at 6.2e-2 with 0.951 U_min'."""
