@@ -89,13 +89,14 @@ public:
         eachDamping([&](const auto& d) { wait = wait || d.waits(m); });
         return wait;
     }
+    // Only the deferred damping is asked: the one with bar forces (barPass), which moves the layers.
     void followLayer(int m, const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u,
                      const Field3& v, Field3& f, const std::function<void(int)>& move) {
-        eachDamping([&](auto& d) { d.followLayer(m, lat, mask, u, v, f, move); });
+        eachDeferred([&](auto& d) { d.followLayer(m, lat, mask, u, v, f, move); });
     }
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                      Field3& f, const std::function<void(int)>& moveWaiting, bool followed = false) {
-        eachDamping([&](auto& d) { d.afterForces(lat, mask, u, v, f, moveWaiting, followed); });
+        eachDeferred([&](auto& d) { d.afterForces(lat, mask, u, v, f, moveWaiting, followed); });
     }
     double stepWork(int m) const {
         double w = 0.0;
@@ -151,6 +152,12 @@ private:
     template <class F>
     void eachDamping(F f) const {
         std::apply([&](const auto&... d) { ((d ? f(*d) : void()), ...); }, dampings_);
+    }
+    // The first deferred damping: at most one has bar forces, and so waits (a second would move the layers twice).
+    template <class F>
+    void eachDeferred(F f) {
+        bool done = false;
+        eachDamping([&](auto& d) { done = done || (d.deferred() && (f(d), true)); });
     }
 
     BuiltDampings dampings_;
