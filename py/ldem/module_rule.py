@@ -1,18 +1,18 @@
-"""The module a specimen needs: at least RULE_MODULES modules over the length
-that governs its peak, the ligament above a notch (a box's depth z less the
-notch's depth) or, without a notch, its depth (a box's z, a cylinder's
-diameter, a dog-bone's neck, a mask's smallest side). `ldem run` warns when a
-file is coarser, naming the module that meets the rule, L0 / k for the
-smallest whole k (every length of the file stays a whole number of modules),
-and the bars it would cost (bar_count of the file's shape at that module).
+"""The module a specimen needs: at least RULE_MODULES modules over the
+ligament above a notch (a box's depth z less the notch's depth), or
+RULE_MODULES_DEPTH over the depth of a specimen without one (a box's z, a
+cylinder's diameter, a dog-bone's neck, a mask's smallest side). `ldem run`
+warns when a file is coarser, naming the module that meets the rule, L0 / k
+for the smallest whole k (every length of the file stays a whole number of
+modules), and the bars it would cost (bar_count of the file's shape at that
+module).
 
-RULE_MODULES is PROVISIONAL until the convergence of the Grégoire beams' peak
-with L0 is measured (`ldem study beams convergence`: the rule is the count of
-modules at which every beam's peak lies within 2 % of its finest module's).
-10 is what is known before it: calibrated on the half-notched D = 50 mm beam
-and transferred to the unnotched one, the peak missed by -9.5 % at L0 = 5 mm
-(5 modules over the ligament) and by -1.2 % at 2.5 mm (10 modules;
-results/beams/gregoire2013/transfer/L0_2.5mm/)."""
+Both counts are measured on the Grégoire beams at a fixed concrete (`ldem
+study beams convergence`, results/beams/gregoire2013/convergence/): the
+fewest modules from which on each beam's peak lies within 2 % of its finest
+module's. Notched: 15 over the ligament (notch D/2, finest 20) and 16 (notch
+D/5, finest 32). Unnotched: 30 over the depth (finest 40), where the peak still
+rose by 1.9 % from 30 to 40 after 2.8 and 3.7 % at the refinements before."""
 from __future__ import annotations
 
 import math
@@ -22,8 +22,14 @@ import numpy as np
 
 from .shapes import module_mask
 
-RULE_MODULES = 10  # PROVISIONAL: modules over the ligament or the depth (the module's text)
-RULE_PROVISIONAL = True  # False once `ldem study beams convergence` has measured RULE_MODULES
+RULE_MODULES = 16  # modules over the ligament above a notch
+RULE_MODULES_DEPTH = 30  # modules over the depth of a specimen without a notch
+LIGAMENT = "ligament above the notch"
+
+
+def rule_modules(what: str) -> int:
+    """The count the rule asks over governing_length's `what`."""
+    return RULE_MODULES if what == LIGAMENT else RULE_MODULES_DEPTH
 
 
 def governing_length(shape: dict) -> tuple:
@@ -37,7 +43,7 @@ def governing_length(shape: dict) -> tuple:
     if kind == "mask":
         return "smallest side", min(size)
     notch = float((shape.get("notch") or {}).get("depth", 0.0))
-    return ("ligament above the notch", size[2] - notch) if notch > 0 else ("depth", size[2])
+    return (LIGAMENT, size[2] - notch) if notch > 0 else ("depth", size[2])
 
 
 def bar_count(mask: np.ndarray) -> int:
@@ -56,18 +62,19 @@ def bar_count(mask: np.ndarray) -> int:
 
 def needed(shape: dict, L0: float) -> Optional[dict]:
     """None when the shape at module L0 meets the rule; else what, length,
-    modules (its count now), k, L0 (L0 / k, the coarsest that meets it) and
-    bars (at that module; None: more than this machine holds)."""
+    modules (its count now), rule (the count asked), k, L0 (L0 / k, the
+    coarsest that meets it) and bars (at that module; None: more than this
+    machine holds)."""
     what, length = governing_length(shape)
-    modules = length / L0
-    if modules >= RULE_MODULES - 1e-9:
+    modules, rule = length / L0, rule_modules(what)
+    if modules >= rule - 1e-9:
         return None
-    k = math.ceil(RULE_MODULES / modules - 1e-9)
+    k = math.ceil(rule / modules - 1e-9)
     try:
         bars = bar_count(module_mask(dict(shape, L0=L0 / k))[2])
     except ValueError:  # the finer lattice would not fit this machine (shapes.module_mask's estimate)
         bars = None
-    return {"what": what, "length": length, "modules": modules, "k": k, "L0": L0 / k, "bars": bars}
+    return {"what": what, "length": length, "modules": modules, "rule": rule, "k": k, "L0": L0 / k, "bars": bars}
 
 
 def warning(shape: dict, L0: float, bars: int) -> str:
@@ -76,7 +83,7 @@ def warning(shape: dict, L0: float, bars: int) -> str:
     if n is None:
         return ""
     return (f"the {n['what']} is {n['modules']:.3g} modules of L0 = {L0 * 1e3:g} mm, fewer than the module rule's "
-            f"{RULE_MODULES}{' (provisional)' * RULE_PROVISIONAL}: the peak may depend on the module; L0 = "
+            f"{n['rule']}: the peak may depend on the module; L0 = "
             f"{n['L0'] * 1e3:.4g} mm (L0 / {n['k']}) meets it, at "
             + (f"{n['bars']:,} bars" if n["bars"] is not None else "more bars than this machine holds")
             + f" (now {bars:,})")

@@ -125,15 +125,19 @@ def test_the_bar_count_is_the_lattice_s():
 
 def test_the_rule_warns_of_a_coarse_notched_beam_and_not_of_a_fine_one(cli, tmp_path, capsys, monkeypatch):
     """examples/beam_3pb.toml has 8 modules over its ligament (80 mm at 10 mm):
-    `ldem run` says the rule's 10 need L0 = 5 mm and its bars; at L0 = 5 mm (16
-    modules) and unnotched at 10 mm (10 over the depth) nothing is said."""
-    assert module_rule.RULE_MODULES == 10 and module_rule.RULE_PROVISIONAL
+    `ldem run` says the rule's 16 need L0 = 5 mm and its bars; at L0 = 5 mm (16
+    modules) nothing is said. Without its notch the same beam is 10 modules deep,
+    and the rule asks 30 over the depth: L0 / 3; at L0 = 2.5 mm (40) nothing."""
+    assert (module_rule.RULE_MODULES, module_rule.RULE_MODULES_DEPTH) == (16, 30)
     fine = _beam(0.005).build
     assert module_rule.needed(_beam(0.005).description["shape"], 0.005) is None
+    plain = _beam(notch=0.0).description["shape"]
+    assert module_rule.needed(dict(plain, L0=0.0025), 0.0025) is None
+    deep = module_rule.needed(plain, 0.01)
+    assert (deep["what"], deep["modules"], deep["rule"], deep["k"]) == ("depth", 10.0, 30, 3)
     n = module_rule.needed(_beam().description["shape"], 0.01)
     assert (n["modules"], n["k"], n["L0"], n["bars"]) == (8.0, 2, 0.005, module_rule.bar_count(fine.mask))
-    for test in (_beam(0.005), _beam(notch=0.0)):
-        warn_module("run", test)
+    warn_module("run", _beam(0.005))
     assert capsys.readouterr().err == ""
     with monkeypatch.context() as m:  # a finer lattice beyond this machine is said, not an error
         m.setattr(module_rule, "module_mask", lambda shape: (_ for _ in ()).throw(ValueError("too big")))
@@ -143,16 +147,16 @@ def test_the_rule_warns_of_a_coarse_notched_beam_and_not_of_a_fine_one(cli, tmp_
             "--set", "final_strain=2e-5", "--out", str(tmp_path / "o"))
     assert r.returncode == 0, r.stderr
     assert (f"ldem run: warning: the ligament above the notch is 8 modules of L0 = 10 mm, fewer than the module "
-            f"rule's 10 (provisional): the peak may depend on the module; L0 = 5 mm (L0 / 2) meets it, at "
+            f"rule's 16: the peak may depend on the module; L0 = 5 mm (L0 / 2) meets it, at "
             f"{n['bars']:,} bars (now 24,995)") in r.stderr.splitlines()
 
 
 def test_the_convergence_plan_counts_its_modules(tmp_path):
     """The beams of the convergence study at every module of the plan are whole
-    numbers of modules (built), 10/20/30 modules over D = 50 mm, and the rule is
+    numbers of modules (built), 10/20/30/40 modules over D = 50 mm, and the rule is
     the fewest modules at which every beam is within 2 % of its finest."""
     which = beam_convergence.plan()
-    assert len(which) == 8 and len(beam_convergence.plan(["D100_n0.2"], [0.0025])) == 1
+    assert len(which) == 10 and len(beam_convergence.plan(["D100_n0.2"], [0.0025])) == 1
     with pytest.raises(ValueError, match="unknown beam D200"):
         beam_convergence.plan(["D200_n0"])
     material = json.load(open(os.path.join(ROOT, "results", "beams", "gregoire2013", "transfer", "on_D50_n0.5",
@@ -161,16 +165,21 @@ def test_the_convergence_plan_counts_its_modules(tmp_path):
     tests = beam_convergence.cases(material, str(tmp_path), 1)
     assert {t.limit for t in tests if t.notch == 0.5} == {beam_convergence.STOP * 0.02e-3}
     depth = {(t.case_name(), t.cases_folder): round(t.D / t.v.L0) for t in tests}
-    assert depth == {("D50_n0.5_s1", "L1.667mm"): 30, ("D50_n0_s1", "L1.667mm"): 30, ("D50_n0.5_s1", "L2.5mm"): 20,
+    assert depth == {("D50_n0.5_s1", "L1.25mm"): 40, ("D50_n0_s1", "L1.25mm"): 40, ("D50_n0.5_s1", "L1.667mm"): 30, ("D50_n0_s1", "L1.667mm"): 30, ("D50_n0.5_s1", "L2.5mm"): 20,
                      ("D50_n0_s1", "L2.5mm"): 20, ("D100_n0.2_s1", "L2.5mm"): 40, ("D50_n0.5_s1", "L5mm"): 10,
                      ("D50_n0_s1", "L5mm"): 10, ("D100_n0.2_s1", "L5mm"): 20}
-    table = [{"beam": "D50_n0.5", "L0_mm": L, "modules": m, "vs_finest": v}
+    lig = "ligament above the notch"
+    table = [{"beam": "D50_n0.5", "L0_mm": L, "modules": m, "vs_finest": v, "over": lig}
              for L, m, v in ((5, 5, 0.05), (2.5, 10, 0.015), (1.667, 15, 0.0))] + \
-            [{"beam": "D50_n0", "L0_mm": L, "modules": m, "vs_finest": v}
+            [{"beam": "D100_n0.2", "L0_mm": L, "modules": m, "vs_finest": v, "over": lig}
+             for L, m, v in ((5, 16, 0.007), (2.5, 32, 0.0))] + \
+            [{"beam": "D50_n0", "L0_mm": L, "modules": m, "vs_finest": v, "over": "depth"}
              for L, m, v in ((5, 10, 0.01), (2.5, 20, -0.03), (1.667, 30, 0.0))]
     r = beam_convergence.rule(table)
-    assert r["per_beam"] == {"D50_n0.5": {"modules": 10, "only_finest": False},
-                             "D50_n0": {"modules": 30, "only_finest": True}} and r["modules"] == 30
+    assert r["per_beam"] == {"D50_n0.5": {"modules": 10, "only_finest": False, "over": lig},
+                             "D100_n0.2": {"modules": 16, "only_finest": False, "over": lig},
+                             "D50_n0": {"modules": 30, "only_finest": True, "over": "depth"}}
+    assert r["rules"] == {lig: 16, "depth": None}
 
 
 def test_a_band_of_the_smallest_validation_specimen(tmp_path, monkeypatch, cli):

@@ -239,7 +239,7 @@ def add_arguments(b) -> None:
                 os.path.join(OUT, "convergence"))
     c.add_argument("--beams", default="", help="comma-separated, of D50_n0.5, D50_n0, D100_n0.2 (default: all)")
     c.add_argument("--L0", dest="L0s", default="", metavar="MM", help="comma-separated modules [mm] of the plan "
-                   "(default: all: 5, 2.5 and 1.667 at D = 50 mm, 5 and 2.5 at D = 100 mm)")
+                   "(default: all: 5, 2.5, 1.667 and 1.25 at D = 50 mm, 5 and 2.5 at D = 100 mm)")
     c.add_argument("--fit", default="", metavar="FIT.json", help="the concrete (default: "
                    "../transfer/on_D50_n0.5/fit.json beside OUT)")
     c.add_argument("--seeds", type=int, default=CONVERGENCE_SEEDS, help="specimens per beam and module")

@@ -5,14 +5,14 @@ fit.json), unchanged at every module, each beam as the transfer runs it
 (whole_curves.WholeCurve: the servo on its clip gauge) but stopped at STOP
 times its measured CMOD at the peak (only the peak is read):
 
-    D = 50 mm, notch D/2 and unnotched: L0 = 5, 2.5 and 1.667 mm (10, 20, 30 modules deep)
+    D = 50 mm, notch D/2 and unnotched: L0 = 5, 2.5, 1.667 and 1.25 mm (10, 20, 30, 40 modules deep)
     D = 100 mm, notch D/5:              L0 = 5 and 2.5 mm (20, 40 modules deep)
 
 three seeds each. The table gives each beam's mean peak against its finest
 module's, and the rule: the fewest modules over the ligament (or the depth)
 at which every beam's peak lies within WITHIN of its finest's.
 
-    ldem study beams convergence [--seeds 3] [--jobs J] [--beams D50_n0.5,...] [--L0 5,2.5,1.667] [--fit FIT.json]
+    ldem study beams convergence [--seeds 3] [--jobs J] [--beams D50_n0.5,...] [--L0 5,2.5,1.667,1.25] [--fit FIT.json]
 
 OUT/L{mm}mm/D{mm}_n{notch}_s{seed}/: the runs; OUT/convergence.csv|md."""
 from __future__ import annotations
@@ -24,14 +24,16 @@ from typing import Dict, List, Sequence, Tuple
 import numpy as np
 
 from ... import io
-from ...module_rule import RULE_MODULES, governing_length
+from ...module_rule import RULE_MODULES, RULE_MODULES_DEPTH, governing_length
 from ..cases import case_dir, is_finished, load_summary
 from ..executors import run_cases
 from .whole_curves import WholeCurve, beam_name, measured_beams
 
-L0_FINEST = 0.05 / 30  # 1.667 mm: 30 modules over D = 50 mm (every length of the beams a whole number of them)
+# D = 50 mm over 10, 20, 30 and 40 modules (every length of the beams a whole number of them); 1.25 mm
+# because the unnotched beam's peak had not settled at 1.667 mm (3.7 % above 2.5 mm's)
+D50_MODULES = (0.005, 0.0025, 0.05 / 30, 0.00125)
 PLAN: Dict[Tuple[float, float], Tuple[float, ...]] = {
-    (50.0, 0.5): (0.005, 0.0025, L0_FINEST), (50.0, 0.0): (0.005, 0.0025, L0_FINEST), (100.0, 0.2): (0.005, 0.0025)}
+    (50.0, 0.5): D50_MODULES, (50.0, 0.0): D50_MODULES, (100.0, 0.2): (0.005, 0.0025)}
 SEEDS = 3
 STOP = 2.0  # a run stops at this multiple of the measured CMOD at the peak (the transfer's go on to 4.4)
 WITHIN = 0.02  # the rule: the peak within 2 % of the finest module's
@@ -95,10 +97,10 @@ def rows(out: str, tests: Sequence[WholeCurve]) -> List[dict]:
 
 
 def rule(table: Sequence[dict]) -> dict:
-    """The fewest modules over the ligament or depth that bring every beam's
-    peak within WITHIN of its finest module's: per beam, the count of its
-    coarsest module from which on every finer one is within; the rule is the
-    largest over the beams (not shown when a beam has one module only)."""
+    """Per beam, the fewest modules from which on every finer module's peak lies within WITHIN of its
+    finest module's (its count at the finest alone: not shown converged; a beam with one module only is
+    left out). The rule is counted apart over the ligament (notched beams) and over the depth: for each,
+    the largest count of its beams, shown if every one of them converged (else None)."""
     per_beam = {}
     for beam in dict.fromkeys(r["beam"] for r in table):
         levels = sorted((r for r in table if r["beam"] == beam), key=lambda r: r["L0_mm"])
@@ -109,8 +111,12 @@ def rule(table: Sequence[dict]) -> dict:
             if abs(r["vs_finest"]) > WITHIN:
                 break
             count = r["modules"]
-        per_beam[beam] = {"modules": count, "only_finest": count == levels[0]["modules"]}
-    return {"per_beam": per_beam, "modules": max((b["modules"] for b in per_beam.values()), default=float("nan"))}
+        per_beam[beam] = {"modules": count, "only_finest": count == levels[0]["modules"], "over": levels[0]["over"]}
+    rules = {}
+    for over in dict.fromkeys(b["over"] for b in per_beam.values()):
+        beams = [b for b in per_beam.values() if b["over"] == over]
+        rules[over] = None if any(b["only_finest"] for b in beams) else max(b["modules"] for b in beams)
+    return {"per_beam": per_beam, "rules": rules}
 
 
 def report(out: str, tests: Sequence[WholeCurve], fit: str) -> str:
@@ -119,7 +125,7 @@ def report(out: str, tests: Sequence[WholeCurve], fit: str) -> str:
     io.write_table(os.path.join(out, "convergence.csv"), table, COLUMNS)
     r = rule(table)
     lines = ["# The peak's convergence with the module (Grégoire et al. 2013)", "",
-             f"The concrete of `{fit}`, unchanged at every module; each beam under the servo on its clip gauge "
+             f"The concrete of `{os.path.relpath(fit, out)}`, unchanged at every module; each beam under the servo on its clip gauge "
              f"(as the transfer), stopped at {STOP:g} times its measured CMOD at the peak. Written by `ldem study "
              "beams convergence` (ldem.study.beams.convergence).", "",
              "| beam | L0 [mm] | modules over | bars | seeds | peak [kN], mean (min-max) | its sem | vs the finest "
@@ -132,11 +138,15 @@ def report(out: str, tests: Sequence[WholeCurve], fit: str) -> str:
     lines += ["", f"The rule, the fewest modules over the ligament (or the depth) with every beam's peak within "
                   f"{WITHIN * 100:g} % of its finest module's:", ""]
     for beam, b in r["per_beam"].items():
-        lines.append(f"- {beam}: {b['modules']:.3g} modules" + (" (only its finest module: not shown converged)"
-                                                                  if b["only_finest"] else ""))
-    lines += ["", f"**At least {r['modules']:.3g} modules** (ldem.module_rule.RULE_MODULES is {RULE_MODULES}, "
-                  "provisional until this table)." if r["per_beam"] else "No beam has two modules finished yet: "
-              "no rule.", ""]
+        lines.append(f"- {beam}: {b['modules']:.3g} modules over the {b['over']}"
+                     + (" (only its finest module: not shown converged)" if b["only_finest"] else ""))
+    lines.append("")
+    for over, n in r["rules"].items():
+        lines.append(f"- **Over the {over}: " + (f"at least {n:.3g} modules**" if n is not None else
+                                                 "no count shown** (a beam's peak had not settled at its finest)"))
+    lines += ["", f"(ldem.module_rule: RULE_MODULES {RULE_MODULES} over the ligament above a notch, "
+                  f"RULE_MODULES_DEPTH {RULE_MODULES_DEPTH} over the depth without one.)"
+              if r["rules"] else "No beam has two modules finished yet: no rule.", ""]
     text = "\n".join(lines)
     io.write_text(os.path.join(out, "convergence.md"), text)
     return text
