@@ -102,11 +102,12 @@ void Simulation::step() {
     weighNextStep();
     // A node layer moves once it has its forces, unless it waits for a damping's that need every
     // node's (BarDashpots.hpp: predicted). One visit of the law a step: layered is compiled for it.
+    const auto advance = [this](int m) { layerDamping_[m] = advanceNodes(m); };
     if (!parts_.deferred()) {
-        layered([this](int m) { layerDamping_[m] = advanceNodes(m); });
+        layered(advance);
         return finishStep();
     }
-    const std::function<void(int)> move = [this](int m) { layerDamping_[m] = advanceNodes(m); };
+    const std::function<void(int)> move = advance;
     if (follow_) {  // (one thread, one rank: the dampings' forces follow the sweep)
         layered([&](int m) { layerDamping_[m] = 0.0, parts_.followLayer(m, lat_, pre_.mask, u_, v_, f_, move); });
         parts_.afterForces(lat_, pre_.mask, u_, v_, f_, move, true);

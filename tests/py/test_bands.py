@@ -165,10 +165,10 @@ def test_the_convergence_plan_counts_its_modules(tmp_path):
     tests = beam_convergence.cases(material, str(tmp_path), 1)
     assert {t.limit for t in tests if t.notch == 0.5} == {beam_convergence.STOP * 0.02e-3}
     depth = {(t.case_name(), t.cases_folder): round(t.D / t.v.L0) for t in tests}
-    assert depth == {("D50_n0.5_s1", "L1.25mm"): 40, ("D50_n0_s1", "L1.25mm"): 40, ("D50_n0.5_s1", "L1.667mm"): 30, ("D50_n0_s1", "L1.667mm"): 30, ("D50_n0.5_s1", "L2.5mm"): 20,
-                     ("D50_n0_s1", "L2.5mm"): 20, ("D100_n0.2_s1", "L2.5mm"): 40, ("D50_n0.5_s1", "L5mm"): 10,
+    assert depth == {("D50_n0.5_s1", "L1.25mm"): 40, ("D50_n0_s1", "L1.25mm"): 40, ("D50_n0.5_s1", "L1.667mm"): 30,
+                     ("D50_n0_s1", "L1.667mm"): 30, ("D50_n0.5_s1", "L2.5mm"): 20, ("D50_n0_s1", "L2.5mm"): 20, ("D100_n0.2_s1", "L2.5mm"): 40, ("D50_n0.5_s1", "L5mm"): 10,
                      ("D50_n0_s1", "L5mm"): 10, ("D100_n0.2_s1", "L5mm"): 20}
-    lig = "ligament above the notch"
+    lig = module_rule.LIGAMENT
     table = [{"beam": "D50_n0.5", "L0_mm": L, "modules": m, "vs_finest": v, "over": lig}
              for L, m, v in ((5, 5, 0.05), (2.5, 10, 0.015), (1.667, 15, 0.0))] + \
             [{"beam": "D100_n0.2", "L0_mm": L, "modules": m, "vs_finest": v, "over": lig}
