@@ -21,17 +21,14 @@ def load(out):
     s = json.load(open(out + "/summary.json"))
     col = lambda k: np.array([float(r[k]) for r in rows])
     T = 2 * math.pi / s.get("omega_d_rad_s", s["omega1_rad_s"])  # the drive's period where reported
-    return {"t": col("time_s"), "F": col("stress_MPa"), "e": col("mean_strain"), "Uf": col("fracture_J"), "s": s,
-            "T": T}
+    loss = (s.get("load_loss") or {}).get("fracture_energy_J")
+    return {"t": col("time_s"), "F": col("stress_MPa"), "strain": col("mean_strain"), "fracture": col("fracture_J"),
+            "loss": loss, "s": s, "T": T}
 
 
 def whole(r):
     """(a) over every record after the peak, the fall included: reported, not judged."""
     return criteria.rms_distance(r["t"], r["F"], r["T"], np.arange(len(r["F"])) >= int(np.argmax(r["F"])))
-
-
-def energy_at(r, strain, at_loss):
-    return r["s"]["load_loss"]["fracture_energy_J"] if at_loss else float(np.interp(strain, r["e"], r["Uf"]))
 
 
 def row(r, label, q=None, fall=False):
@@ -40,10 +37,8 @@ def row(r, label, q=None, fall=False):
     if fall:
         cells.append(f"{whole(r) * 100:.2f} %")
     if q:
-        until = min(r["e"][-1], q["e"][-1])
-        at_loss = bool(r["s"].get("load_loss") and q["s"].get("load_loss"))
-        cells += [f"{(r['F'].max() / q['F'].max() - 1) * 100:+.2f} %",
-                  f"{(energy_at(r, until, at_loss) / energy_at(q, until, at_loss) - 1) * 100:+.2f} %",
+        er, eq = criteria.energies_compared(r, q)
+        cells += [f"{(r['F'].max() / q['F'].max() - 1) * 100:+.2f} %", f"{(er / eq - 1) * 100:+.2f} %",
                   f"{criteria.ringing(q['t'], q['F'], q['T']) * 100:.2f} %"]
     return "| " + " | ".join(cells + [f"{r['s']['steps']}", f"{r['s']['wall_s']:.0f} s"]) + " |"
 

@@ -70,6 +70,16 @@ def periods_after_start(t, F, T, ramp_time: float) -> float:
     return (float(np.asarray(t)[int(np.argmax(F))]) - ramp_time) / T
 
 
+def energies_compared(rate: dict, quarter: dict) -> tuple:
+    """(b)'s fracture energies of a run and its quarter-rate twin, each a dict of "loss" (the energy at
+    its load loss, None without one), "strain" and "fracture" (its curve): at the load loss where both
+    have one (a cube stopped there), else at the shorter curve's last mean strain."""
+    if rate["loss"] is not None and quarter["loss"] is not None:
+        return rate["loss"], quarter["loss"]
+    until = min(rate["strain"][-1], quarter["strain"][-1])
+    return tuple(float(np.interp(until, r["strain"], r["fracture"])) for r in (rate, quarter))
+
+
 def rate_effect(at_rate: Sequence[float], at_quarter: Sequence[float], target: float) -> dict:
     """(b) over seeds: the mean of the relative changes x/q - 1 of each seed's pair, its standard error, and
     the verdict: 'pass' where |mean| <= target, 'fail' where |mean| exceeds it by more than two standard

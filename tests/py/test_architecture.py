@@ -12,7 +12,7 @@ PACKAGE = os.path.join(ROOT, "py", "ldem")
 # Lower layers first; a module may import its own layer or those below, never above.
 LAYERS = [
     {"ldem._core"},
-    {"ldem.mincut", "ldem.curves", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.module_rule", "ldem.yade"},  # specimen and run
+    {"ldem.mincut", "ldem.curves", "ldem.criteria", "ldem.cube", "ldem.shapes", "ldem.specimen", "ldem.module_rule", "ldem.yade"},  # specimen and run
     {"ldem.io", "ldem.slicing", "ldem.parallel", "ldem.progress", "ldem.plots", "ldem.report",  # writers (ldem.io.*),
      "ldem.markdown", "ldem.helptext", "ldem.signals"},                                    # pictures, reports, signals
     {"ldem.runner"},                                                   # a run wired to its files

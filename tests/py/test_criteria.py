@@ -69,3 +69,13 @@ def test_the_rate_effect_is_judged_on_three_seeds_or_more_against_their_standard
     assert noisy["verdict"] == "within the seeds' noise"
     with pytest.raises(ValueError, match="2 runs at the rate against 3"):
         criteria.rate_effect([1, 1], [1, 1, 1], 0.01)
+
+
+def test_the_energies_compared_are_at_the_load_loss_where_both_have_one_else_at_the_shorter_end():
+    longer = {"loss": None, "strain": np.array([0.0, 1.0, 2.0]), "fracture": np.array([0.0, 1.0, 3.0])}
+    shorter = {"loss": None, "strain": np.array([0.0, 1.5]), "fracture": np.array([0.0, 1.2])}
+    assert criteria.energies_compared(longer, shorter) == pytest.approx((2.0, 1.2))  # at strain 1.5
+    assert criteria.energies_compared(shorter, longer) == pytest.approx((1.2, 2.0))
+    lost = dict(longer, loss=0.7)
+    assert criteria.energies_compared(lost, dict(shorter, loss=0.5)) == (0.7, 0.5)
+    assert criteria.energies_compared(lost, shorter) == pytest.approx((2.0, 1.2))  # one loss alone: the curves

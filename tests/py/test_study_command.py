@@ -35,11 +35,12 @@ def test_ldem_study_lists_every_registered_study_with_its_line(cli):
     assert all(" ".join(line.split()[1:]) == " ".join(STUDIES[line.split()[0]].line.split()) for line in listed)
     # the studies that were scripts are here, beside those that were already commands
     assert {"size-effect", "damping", "mesh", "refinement", "beams", "ablation", "validation",
-            "calibration", "fracture-energy", "seed-settings"} == set(STUDIES)
+            "calibration", "fracture-energy", "seed-settings", "criteria"} == set(STUDIES)
 
 
 @pytest.mark.parametrize("name", [n for n in STUDIES if n not in ("refinement", "beams", "calibration",
-                                                                   "validation", "fracture-energy", "seed-settings")])
+                                                                   "validation", "fracture-energy", "seed-settings",
+                                                                   "criteria")])
 def test_the_load_choices_are_the_parameter_tables(capsys, name):
     """A study's --loads takes the choices of the parameter `load`, all of them
     by default (refinement: uniform only), and says which they are."""

@@ -49,6 +49,7 @@ size-effect run, validation the beams' stop):
                tables, report, comparison, diagnosis, whole_curves, transfer; __init__: its sub-commands
   ablation     one factor at a time on a cube, stopped past the peak
   validation   blind predictions of specimen files with the calibrated concrete
+  criteria     is the load quasi-static: criteria (a)-(c) on five specimens at their rate and a quarter of it
   seed_settings  the settings the reference study does not report, one at a time
 """
 from ..io import read_table as read_csv, write_table as write_csv  # noqa: F401
@@ -61,7 +62,7 @@ from .damping import run_damping  # noqa: F401
 from . import mesh, refinement  # noqa: F401
 # Each study registers itself as its package is imported (size_effect, damping, mesh, refinement above):
 # this order is `ldem study`'s.
-from . import concrete, calibration, fracture_energy, beams, ablation, validation, seed_settings  # noqa: F401
+from . import concrete, calibration, fracture_energy, beams, ablation, validation, criteria, seed_settings  # noqa: F401
 from .tables import (B0, CASE_COLUMNS, REFERENCE_UNIFORM, SUMMARY_COLUMNS, aggregate, case_row,  # noqa: F401
                      fit_fractal, fractal_fits, mean_cv)
 from ..curves import mean_curve, mean_curve_peak  # noqa: F401
