@@ -102,6 +102,11 @@ def test_bad_input_is_one_line_before_anything_runs(tmp_path, cli):
     r = cli("study", "beams", "predict", "--out", str(tmp_path), "--eps-p", "1e-4", "--seeds", "0")
     assert r.returncode == 2 and "--seeds must be at least 1 (got 0)" in r.stderr
     assert not (tmp_path / "cases").exists() and not (tmp_path / "cases_cv0").exists()
+    r = cli("study", "beams", "predict", "--out", str(tmp_path), "--eps-p", "1e-4", "--notches", "0.3")
+    assert r.returncode == 2 and r.stderr.count("\n") == 1 and "--notches: each one of 0, 0.2, 0.5" in r.stderr
+    r = cli("study", "beams", "predict", "--out", str(tmp_path), "--eps-p", "1e-4", "--rate-periods", "-1")
+    assert r.returncode == 2 and "--rate-periods must be >= 0 (got -1.0)" in r.stderr
+    assert not (tmp_path / "cases").exists()
     r = cli("study", "beams", "size-effect", "--out", str(tmp_path))
     assert r.returncode == 2 and r.stderr.count("\n") == 1 and "no finished case" in r.stderr
     r = cli("study", "beams", "diagnose", "--out", str(tmp_path), "--factors", "cmod,nothing")
@@ -123,3 +128,12 @@ def test_whole_curves_and_transfer_refuse_bad_input_in_one_line(cli, tmp_path):
                 "--data", data)
         assert r.returncode == 2 and r.stderr.count("\n") == 1 and "none.json not found" in r.stderr
     assert not out.exists()
+
+
+def test_rule_c_drives_a_beam_in_place_of_the_study_s_rate():
+    """--rate-periods N: the beam's file asks rule (c)'s rate (eps_p in N periods of omega_d), not 0.1 D/s."""
+    study = beams.beam(0.05, 0.5, 1e-4, 1)
+    rule = beams.beam(0.05, 0.5, 1e-4, 1, v=beams.Variant(rate_periods=3))
+    assert study.build.params["rate_periods"] == 0 and study.strain_rate == beams.PREDICTION.rate == 0.1
+    assert rule.build.params["rate_periods"] == 3
+    assert [t.notch for t in beams.series_tests(1e-4, 2, notches=(0.5,))] == [0.5] * 6  # three depths, two seeds

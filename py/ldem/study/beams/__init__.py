@@ -3,7 +3,8 @@ the why of each choice), one sub-command per step, each in the study folder
 OUT (default results/beams/gregoire2013, from where it is run):
 
     ldem study beams calibrate                                      eps_p on the tension prism
-    ldem study beams predict --eps-p E [--out OUT] [--seeds 6] [--jobs J]   cases/, predictions.csv
+    ldem study beams predict --eps-p E [--out OUT] [--seeds 6] [--jobs J] [--notches 0,0.2,0.5] [--rate-periods N]
+                                                                    cases/, predictions.csv
     ldem study beams uniform --eps-p E [--out OUT] [--jobs J]       G_f CV 0: cases_cv0/
     ldem study beams curves [--out OUT] [--seeds 6]                 curves/*.csv, curves.png
     ldem study beams compare [--out OUT] [--data DIR]               comparison.md|png (comparison)
@@ -27,10 +28,10 @@ from .comparison import compare as compare_beams, comparison_figure, comparison_
 from .diagnosis import BY_NAME, FACTORS, markdown as diagnosis_markdown, run as run_diagnosis
 from .report import cracks_mosaic, curves_figure, size_effect_figure
 from .tables import write_curve_tables, write_size_effect
-from .cases import (DEPTHS, E, FC, FT, L0, NU, calibrate as calibrate_eps_p, calibrated_variant, run_beams,
-                    series_tests, uniform_tests, write_predictions)
+from .cases import (DEPTHS, E, FC, FT, L0, NOTCHES, NU, Variant, calibrate as calibrate_eps_p, calibrated_variant,
+                    run_beams, series_tests, uniform_tests, write_predictions)
 from ..concrete import calibrate as calibrate_concrete
-from ..options import add_seeds, parameter_option, parse_names, seed_count
+from ..options import add_seeds, parameter_option, parse_floats, parse_names, seed_count
 from ..registry import Study, register
 from .transfer import report as transfer_report, transfer as run_transfer
 from .whole_curves import beam_name, measured_beams, run as run_whole_curves
@@ -56,8 +57,14 @@ def predict(args) -> None:
     """Runs the cases not yet finished, then writes predictions.csv from all of them."""
     seeds = seed_count(args)
     eps_p(args)
+    notches = parse_floats(args.notches, "--notches")
+    if any(n not in NOTCHES for n in notches):
+        raise ValueError(f"--notches: each one of {', '.join(f'{n:g}' for n in NOTCHES)} (got {args.notches})")
+    if args.rate_periods < 0:
+        raise ValueError(f"--rate-periods must be >= 0 (got {args.rate_periods})")
     if args.jobs > 0:
-        run_beams(series_tests(args.eps_p, seeds), args.out, args.jobs)
+        v = Variant(rate_periods=args.rate_periods)
+        run_beams(series_tests(args.eps_p, seeds, v, notches=notches), args.out, args.jobs)
     write_predictions(args.out, seeds)
 
 
@@ -200,6 +207,11 @@ def add_arguments(b) -> None:
         parameter_option(q, "eps_p", "--eps-p", "; `ldem study beams calibrate` finds it", required=True,
                          default=None)
     add_seeds(p, "beam")
+    p.add_argument("--notches", default=",".join(f"{n:g}" for n in NOTCHES), metavar="N,...",
+                   help="notch depths / D of the beams to run (default: all three)")
+    p.add_argument("--rate-periods", type=float, default=0.0, metavar="N",
+                   help="drive by rule (c): eps_p in N periods of the mode the drive moves (omega_d), in place of "
+                        "the study's 0.1 D per second (0: that rate)")
     _jobs(p, " (0: only the table, from the cases finished)")
     _jobs(u)
     add_seeds(command("curves", curves, "curves/D{mm}_n{notch}.csv and curves.png from the finished cases"), "beam")

@@ -65,7 +65,9 @@ class Variant:
     [1/s] (0: the platen under displacement control); gauge: the length of a
     clip gauge across the notch's module on the lower face [m], a whole number
     of modules (probe gauge_m; the servo holds it when there is one), 0: none
-    (the servo holds the notch module's opening, cmod_m)."""
+    (the servo holds the notch module's opening, cmod_m); rate_periods: > 0
+    drives by rule (c) instead of `rate`, eps_p in that many periods of the mode
+    the drive moves (omega_d)."""
     material: Tuple[Tuple[str, object], ...] = ()
     L0: float = L0
     platen: int = 1
@@ -73,6 +75,7 @@ class Variant:
     rate: float = 0.1
     opening_rate: float = 0.0
     gauge: float = 0.0
+    rate_periods: float = 0.0
 
     def concrete(self, eps_p: float, **more) -> dict:
         """The material's parameters: the prediction's, eps_p and more, then the variant's."""
@@ -123,7 +126,8 @@ def beam(D: float, notch: float, eps_p: float, seed: int, gf_cv: float = 1.0, v:
                          "stress_label": "load F [MN]", "strain_label": "deflection/D [-]",
                          "probes": probes}, **servo),
         "material": v.concrete(eps_p, Gf_cv=gf_cv),
-        "loading": dict({"strain_rate": v.rate}, **opening),
+        "loading": dict({"rate_periods": v.rate_periods} if v.rate_periods > 0 else {"strain_rate": v.rate},
+                        **opening),
         "run": {"seed": seed, "final_strain": 3e-3, "threads": 1}})
 
 
@@ -201,10 +205,10 @@ def calibrate(log: Callable[[str], None] = print, v: Variant = PREDICTION) -> fl
     return eps
 
 
-def series_tests(eps_p: float, seeds: int, v: Variant = PREDICTION, depths=DEPTHS) -> List[Beam]:
+def series_tests(eps_p: float, seeds: int, v: Variant = PREDICTION, depths=DEPTHS, notches=NOTCHES) -> List[Beam]:
     """Every beam with random G_f, seed by seed: a series cut short has as many
     specimens of every beam."""
-    return [Beam(D, n, eps_p, s, v=v) for s in range(1, seeds + 1) for D in depths for n in NOTCHES]
+    return [Beam(D, n, eps_p, s, v=v) for s in range(1, seeds + 1) for D in depths for n in notches]
 
 
 def calibrated_variant(material: dict) -> Variant:

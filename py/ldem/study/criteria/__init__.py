@@ -85,7 +85,8 @@ def measured(folder: str, specimen: str, rate: str, seed: int) -> dict:
     loss = (s.get("load_loss") or {}).get("fracture_energy_J")
     return {"specimen": specimen, "rate": rate, "seed": seed, "peak": float(F.max()),
             "a": criteria.ringing(t, F, T), "c": criteria.periods_after_start(t, F, T, s["ramp_time_s"]),
-            "energy_J": loss if loss is not None else float(c["fracture_J"][-1]), "at_loss": loss is not None, "loss": loss,
+            "energy_J": loss if loss is not None else float(c["fracture_J"][-1]), "at_loss": loss is not None,
+            "loss": loss,
             "steps": s["steps"], "wall_s": s["wall_s"], "energy_balance_error": s["energy_balance_error"], "T_s": T,
             "strain": c["mean_strain"], "fracture": c["fracture_J"]}
 
@@ -107,7 +108,8 @@ def specimen_row(s: Specimen, runs: List[dict]) -> list:
     rate, quarter = at["rate"], at["quarter"]
     pairs = [criteria.energies_compared(a, q) for a, q in zip(rate, quarter)]
     mean = lambda rs, k: float(np.mean([x[k] for x in rs]))  # noqa: E731
-    return [s.title, f"{mean(rate, 'peak'):.5g}", f"{_percent(mean(rate, 'a'))} ({_percent(max(x['a'] for x in rate))})",
+    largest_a = max(x["a"] for x in rate)
+    return [s.title, f"{mean(rate, 'peak'):.5g}", f"{_percent(mean(rate, 'a'))} ({_percent(largest_a)})",
             f"{mean(rate, 'c'):.1f}",
             _effect(criteria.rate_effect([x["peak"] for x in rate], [x["peak"] for x in quarter], TARGETS["peak"])),
             _effect(criteria.rate_effect([p[0] for p in pairs], [p[1] for p in pairs], TARGETS["energy"])),
