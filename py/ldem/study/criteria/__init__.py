@@ -50,6 +50,11 @@ class Specimen:
     size: float = 0.48  # [m]
     final_strain: float = 0.0  # 0: the file's
 
+    @property
+    def unit(self) -> tuple:
+        """(name, factor) of its load: a cube's stress in MPa; a file's force, in MN as its area is 1, in kN."""
+        return ("kN", 1e3) if self.file else ("MPa", 1.0)
+
     def test(self, root: str, seed: int, rate: float, settings: dict):
         """This specimen's run at `rate` times its drive's rate."""
         if not self.file:
@@ -72,18 +77,24 @@ COLUMNS = ("specimen", "rate", "seed", "peak", "a", "c", "energy_J", "at_loss", 
            "energy_balance_error", "T_s")
 
 
-def cases(specimens: Sequence[Specimen], root: str, seeds: int, settings: dict) -> List[Named]:
-    return [Named(s.test(root, k, f, settings), f"{s.name}_{r}_s{k}", writers=["curve", "summary"])
-            for s in specimens for r, f in RATES.items() for k in range(1, seeds + 1)]
+def plan(specimens: Sequence[Specimen], seeds: int) -> list:
+    """(specimen, rate's name, seed) of every run."""
+    return [(s, r, k) for s in specimens for r in RATES for k in range(1, seeds + 1)]
 
 
-def measured(folder: str, specimen: str, rate: str, seed: int) -> dict:
-    """A run's row: its peak, (a), (c), its fracture energy at the load loss (or at its end) and cost."""
+def cases(runs: list, root: str, settings: dict) -> List[Named]:
+    return [Named(s.test(root, k, RATES[r], settings), f"{s.name}_{r}_s{k}", writers=["curve", "summary"])
+            for s, r, k in runs]
+
+
+def measured(folder: str, specimen: Specimen, rate: str, seed: int) -> dict:
+    """A run's row: its peak (in the specimen's unit), (a), (c), its fracture energy at the load loss (or at
+    its end) and cost."""
     s, c = load_summary(folder), load_curve(folder)
-    t, F = c["time_s"], c["stress_MPa"]
+    t, F = c["time_s"], c["stress_MPa"] * specimen.unit[1]
     T = 2 * math.pi / (s.get("omega_d_rad_s") or s["omega1_rad_s"])  # the drive's mode where reported
     loss = (s.get("load_loss") or {}).get("fracture_energy_J")
-    return {"specimen": specimen, "rate": rate, "seed": seed, "peak": float(F.max()),
+    return {"specimen": specimen.name, "rate": rate, "seed": seed, "peak": float(F.max()),
             "a": criteria.ringing(t, F, T), "c": criteria.periods_after_start(t, F, T, s["ramp_time_s"]),
             "energy_J": loss if loss is not None else float(c["fracture_J"][-1]), "at_loss": loss is not None,
             "loss": loss,
@@ -109,7 +120,7 @@ def specimen_row(s: Specimen, runs: List[dict]) -> list:
     pairs = [criteria.energies_compared(a, q) for a, q in zip(rate, quarter)]
     mean = lambda rs, k: float(np.mean([x[k] for x in rs]))  # noqa: E731
     largest_a = max(x["a"] for x in rate)
-    return [s.title, f"{mean(rate, 'peak'):.5g}", f"{_percent(mean(rate, 'a'))} ({_percent(largest_a)})",
+    return [s.title, f"{mean(rate, 'peak'):.5g} {s.unit[0]}", f"{_percent(mean(rate, 'a'))} ({_percent(largest_a)})",
             f"{mean(rate, 'c'):.1f}",
             _effect(criteria.rate_effect([x["peak"] for x in rate], [x["peak"] for x in quarter], TARGETS["peak"])),
             _effect(criteria.rate_effect([p[0] for p in pairs], [p[1] for p in pairs], TARGETS["energy"])),
@@ -133,18 +144,17 @@ def report(specimens: Sequence[Specimen], runs: List[dict], seeds: int, settings
         f"seeds and its standard error, judged against {TARGETS['peak']:.0%} (peak) and {TARGETS['energy']:.0%} "
         "(fracture energy: at the load loss for the cubes, else at the shorter run's end).",
         "- (c): periods of the drive's mode from the end of the smooth start to the peak.",
-        "- peak: MPa for the cubes, kN for the beams, MN x 1e-3 for the panel (each file's load unit); steps: "
-        "at the rate, the mean over the seeds.", ""])
+        "- peak and steps: at the rate, the mean over the seeds.", ""])
 
 
 def run_criteria(out: str, root: str = ".", seeds: int = 3, specimens: Sequence[Specimen] = SPECIMENS,
                  jobs: int = 1, settings: Optional[dict] = None, log: Callable[[str], None] = print) -> str:
     """Runs the unfinished cases, writes OUT/criteria.csv and OUT/criteria.md; returns the table."""
     settings = {"threads": 1, **(settings or {})}
-    tests = cases(specimens, root, seeds, settings)
+    todo = plan(specimens, seeds)
+    tests = cases(todo, root, settings)
     run_cases(tests, out, jobs=jobs, log=log)
-    runs = [measured(case_dir(out, t), s.name, r, k) for t, (s, r, k) in
-            zip(tests, [(s, r, k) for s in specimens for r in RATES for k in range(1, seeds + 1)])]
+    runs = [measured(case_dir(out, t), s, r, k) for t, (s, r, k) in zip(tests, todo)]
     io.write_table(os.path.join(out, "criteria.csv"), runs, COLUMNS)
     text = report(specimens, runs, seeds, settings)
     io.write_text(os.path.join(out, "criteria.md"), text)
