@@ -217,14 +217,18 @@ TEST(Specimen, APushIsMeasuredPositive) {
     LoadingParams lp;
     lp.strainRate = 0.1;
     RunParams rp;
-    rp.threads = 1, rp.recordEvery = 25;  // 12 records: below eps_p at 0.8 of the limit
+    rp.threads = 1, rp.recordEvery = 10;
     Specimen pushed = cubeTestSpecimen(2, 2, 4, 0.02, m, lp);
     for (double& w : pushed.prescribed.weight) w = -w;
     pushed.measures.meanDriveWeight = -pushed.measures.meanDriveWeight;
     Simulation push(std::move(pushed), m, lp, rp), pull(cubeTestSpecimen(2, 2, 4, 0.02, m, lp), m, lp, rp);
     std::vector<CurvePoint> a, b;
-    push.run([&](const CurvePoint& p) { a.push_back(p); return a.size() < 12; });
-    pull.run([&](const CurvePoint& p) { b.push_back(p); return b.size() < 12; });
+    // Records to 0.6 eps_p, below any bar's peak strain at any time step.
+    const auto belowPeak = [&](std::vector<CurvePoint>& out) {
+        return [&](const CurvePoint& p) { out.push_back(p); return p.meanStrain < 0.6 * m.epsP; };
+    };
+    push.run(belowPeak(a));
+    pull.run(belowPeak(b));
     ASSERT_EQ(a.size(), b.size());
     EXPECT_GT(a.back().stress, 1e5);
     for (std::size_t i = 0; i < a.size(); ++i) {
