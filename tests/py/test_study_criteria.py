@@ -20,6 +20,8 @@ def test_each_specimen_runs_at_its_drive_and_a_quarter_of_its_rate():
         assert at.build.params["rate_periods"] == study.RULE_PERIODS == 3  # rule (c)
         assert q.build.params["rate_periods"] == 12 and q.seed == at.seed == 3
     assert by["eccentric_beam"].test(ROOT, 1, 1.0, {}).final_strain == 9e-4  # past its peak at 4.2e-4
+    runs = study.cases(study.plan([by["l_panel"]], 1), ROOT, {}, periods=12)  # --rate-periods 12
+    assert [t.build.params["rate_periods"] for t in runs] == [12, 48]
 
 
 def test_a_small_cube_s_rate_effect_is_read_from_its_two_runs(tmp_path):
@@ -44,3 +46,5 @@ def test_the_study_refuses_to_let_set_change_what_it_sets(capsys):
 
     assert main(["study", "criteria", "--set", "rate_periods=5", "--out", "/nonexistent/x"]) == 2
     assert "the study sets it" in capsys.readouterr().err
+    assert main(["study", "criteria", "--rate-periods", "0", "--out", "/nonexistent/x"]) == 2
+    assert "--rate-periods must be positive (got 0.0)" in capsys.readouterr().err

@@ -9,12 +9,13 @@ by default: (b) judges the mean of at least three pairs):
   l_panel                        the L-panel at L0 = 25 mm
 
 The beams and the panel are driven by rule (c), eps_p in RULE_PERIODS periods
-of the mode the drive moves, at a constant rate, to their files' final strains
+(--rate-periods) of the mode the drive moves, at a constant rate, to their files' final strains
 (the eccentric beam's past its peak, 4.2e-4 D); their quarter is 4 x as many
 periods. OUT/cases/{specimen}_{rate|quarter}_s{seed}/, OUT/criteria.csv (a
 row a run), OUT/criteria.md (a row a specimen).
 
-    ldem study criteria [--seeds 3] [--specimens NAME,...] [--jobs J] [--set NAME=VALUE ...] [--root .] [--out OUT]
+    ldem study criteria [--seeds 3] [--specimens NAME,...] [--rate-periods 3] [--jobs J] [--set NAME=VALUE ...]
+                        [--root .] [--out OUT]
 
 --set changes every run (e.g. the dynamics before a change: --set
 dashpot_velocity=lagged)."""
@@ -55,14 +56,14 @@ class Specimen:
         """(name, factor) of its load: a cube's stress in MPa; a file's force, in MN as its area is 1, in kN."""
         return ("kN", 1e3) if self.file else ("MPa", 1.0)
 
-    def test(self, root: str, seed: int, rate: float, settings: dict):
-        """This specimen's run at `rate` times its drive's rate."""
+    def test(self, root: str, seed: int, rate: float, settings: dict, periods: float = RULE_PERIODS):
+        """This specimen's run at `rate` times its drive's rate (a file's: rule (c) with N = periods)."""
         if not self.file:
             return CubeTest(size=self.size, load=self.load, seed=seed, stop_at="load_loss",
                             loss_stop_strain_ratio=0.0, **{**settings, "strain_rate": CubeTest.strain_rate * rate})
         more = {"final_strain": self.final_strain} if self.final_strain else {}
         return SpecimenTest.from_file(os.path.join(root, self.file),
-                                      overrides={**settings, **more, "seed": seed, "rate_periods": RULE_PERIODS / rate})
+                                      overrides={**settings, **more, "seed": seed, "rate_periods": periods / rate})
 
 
 SPECIMENS = (
@@ -82,8 +83,8 @@ def plan(specimens: Sequence[Specimen], seeds: int) -> list:
     return [(s, r, k) for s in specimens for r in RATES for k in range(1, seeds + 1)]
 
 
-def cases(runs: list, root: str, settings: dict) -> List[Named]:
-    return [Named(s.test(root, k, RATES[r], settings), f"{s.name}_{r}_s{k}", writers=["curve", "summary"])
+def cases(runs: list, root: str, settings: dict, periods: float = RULE_PERIODS) -> List[Named]:
+    return [Named(s.test(root, k, RATES[r], settings, periods), f"{s.name}_{r}_s{k}", writers=["curve", "summary"])
             for s, r, k in runs]
 
 
@@ -132,14 +133,17 @@ HEADER = ("specimen", "peak", "(a): mean (largest)", "(c) periods", "(b) peak: m
           "(a) at 1/4", "(c) at 1/4", "steps", "balance, largest")
 
 
-def report(specimens: Sequence[Specimen], runs: List[dict], seeds: int, settings: dict) -> str:
+def report(specimens: Sequence[Specimen], runs: List[dict], seeds: int, settings: dict,
+           periods: float = RULE_PERIODS) -> str:
     changed = ", ".join(f"`{k}={v}`" for k, v in sorted(settings.items()) if k != "threads") or "none"
     return "\n".join([
-        f"Criteria (a)-(c) (`ldem.criteria`), seeds 1-{seeds}, each at its drive and at a quarter of its rate. "
+        f"Criteria (a)-(c) (`ldem.criteria`), seeds 1-{seeds}, each at its drive and at a quarter of its rate "
+        f"(the files' specimens: rule (c) with N = {periods:g}, and {4 * periods:g}). "
         f"Settings beside the defaults: {changed}.", "",
         md_table(HEADER, [specimen_row(s, runs) for s in specimens]), "",
         f"- (a): the rms of the load about its mean over one period of the drive's mode, in % of the peak, "
-        f"from the peak to the fall and from 3 periods after it (target: at most {TARGETS['a']:.0%}).",
+        f"from the peak to the fall and from 3 periods after it (target: at most {TARGETS['a']:.0%}); -: no "
+        "record judged (the load fell below 90 % of the peak within a period of it and never below 10 %).",
         f"- (b): each seed's value at the rate over its value at a quarter of it, minus one; the mean over the "
         f"seeds and its standard error, judged against {TARGETS['peak']:.0%} (peak) and {TARGETS['energy']:.0%} "
         "(fracture energy: at the load loss for the cubes, else at the shorter run's end).",
@@ -148,15 +152,18 @@ def report(specimens: Sequence[Specimen], runs: List[dict], seeds: int, settings
 
 
 def run_criteria(out: str, root: str = ".", seeds: int = 3, specimens: Sequence[Specimen] = SPECIMENS,
-                 jobs: int = 1, settings: Optional[dict] = None, log: Callable[[str], None] = print) -> str:
+                 jobs: int = 1, settings: Optional[dict] = None, log: Callable[[str], None] = print,
+                 periods: float = RULE_PERIODS) -> str:
     """Runs the unfinished cases, writes OUT/criteria.csv and OUT/criteria.md; returns the table."""
+    if not periods > 0:
+        raise ValueError(f"--rate-periods must be positive (got {periods})")
     settings = {"threads": 1, **(settings or {})}
     todo = plan(specimens, seeds)
-    tests = cases(todo, root, settings)
+    tests = cases(todo, root, settings, periods)
     run_cases(tests, out, jobs=jobs, log=log)
     runs = [measured(case_dir(out, t), s, r, k) for t, (s, r, k) in zip(tests, todo)]
     io.write_table(os.path.join(out, "criteria.csv"), runs, COLUMNS)
-    text = report(specimens, runs, seeds, settings)
+    text = report(specimens, runs, seeds, settings, periods)
     io.write_text(os.path.join(out, "criteria.md"), text)
     return text
 
@@ -165,6 +172,9 @@ def add_arguments(q) -> None:
     q.add_argument("--seeds", type=int, default=3, help="random specimens per specimen and rate (seeds 1..N)")
     q.add_argument("--specimens", default=",".join(s.name for s in SPECIMENS), metavar="NAME,...",
                    help="which of " + ", ".join(s.name for s in SPECIMENS))
+    q.add_argument("--rate-periods", type=float, default=RULE_PERIODS, metavar="N",
+                   help="the files' specimens' drive: rule (c), eps_p in N periods of the mode the drive moves "
+                        "(their quarter: 4 N)")
     q.add_argument("--jobs", type=int, default=1, metavar="J", help="runs at a time, one thread each")
     q.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
                    help="any parameter of ldem cube --help for every run (repeatable)")
@@ -181,7 +191,7 @@ def cmd_criteria(args) -> int:
         if k in settings:
             raise ValueError(f"--set {k}: the study sets it")
     print(run_criteria(args.out, args.root, seed_count(args), [s for s in SPECIMENS if s.name in names],
-                       args.jobs, settings, log=lambda s: print(s, flush=True)))
+                       args.jobs, settings, log=lambda s: print(s, flush=True), periods=args.rate_periods))
     return 0
 
 
