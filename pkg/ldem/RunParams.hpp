@@ -18,7 +18,7 @@
     X(StopId, stopAt, "stop_at", stopNamed("separation"), "", Domain::choices(stopNames()), stopHelp())      \
     LDEM_STOPS(LDEM_PART_LIST, X)                                                                            \
     X(double, dt, "dt", 0.0, "s", Domain::atLeast(0), "time step (0: safety x stability limit)")             \
-    X(double, dtSafety, "dt_safety", 0.8, "", Domain::openClosed(0, 1),                                      \
+    X(double, dtSafety, "dt_safety", 0.9, "", Domain::openClosed(0, 1),                                      \
       "fraction of the stability limit allowed, 2/omega_max x (sqrt(1 + zeta_high^2) - zeta_high), or "      \
       "2/omega_max with dashpot_velocity predicted while zeta_high <= 0.5; without the dashpots (zeta_high 0) "\
       "keep it at 0.4: above, closing cracks pump energy into the highest modes")                             \

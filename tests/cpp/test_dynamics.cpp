@@ -36,8 +36,9 @@ TEST(DirectSetUp, TimeStepAboveStabilityLimitIsRefused) {
     rp.threads = 1;
     const Simulation ref(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, rp);
     const double limit = ref.stableTimeStepLimit();
-    // The bar dashpots' explicit damping shortens it (dynamics/BarDashpots.hpp).
-    EXPECT_NEAR(limit, rp.dtSafety * 2 / ref.frequencies().omegaMax * dampedStepFactor(rp.zetaHigh), 1e-15 * limit);
+    // The defaults' dashpots, read at the predicted velocity with zeta_high 0.5, leave 2/omega_max whole.
+    EXPECT_TRUE(rp.dashpotPredicted && rp.zetaHigh == 0.5);
+    EXPECT_NEAR(limit, rp.dtSafety * 2 / ref.frequencies().omegaMax, 1e-15 * limit);
     EXPECT_EQ(ref.dt(), limit);  // dt = 0: the limit itself
 
     RunParams over = rp;
@@ -55,7 +56,12 @@ TEST(DirectSetUp, TimeStepAboveStabilityLimitIsRefused) {
     EXPECT_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare), std::invalid_argument);
     bare.dt = 0.999 * 2 / ref.frequencies().omegaMax;
     EXPECT_NO_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare));
-    bare.zetaHigh = 0.3;  // with dashpots: (2/omega_max)(sqrt(1 + zeta^2) - zeta) = 0.744 x 2/omega_max
+    bare.zetaHigh = 0.6;  // predicted, zeta_high omega_max dt <= 1: 0.5/0.6 of 2/omega_max
+    EXPECT_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare), std::invalid_argument);
+    bare.dt = 0.999 * 2 / ref.frequencies().omegaMax * 0.5 / 0.6;
+    EXPECT_NO_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare));
+    bare.dashpotPredicted = false, bare.zetaHigh = 0.3;  // lagged: (2/omega_max)(sqrt(1 + zeta^2) - zeta) = 0.744 x 2/omega_max
+    bare.dt = 0.999 * 2 / ref.frequencies().omegaMax;
     EXPECT_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare), std::invalid_argument);
     bare.dt = 0.999 * 2 / ref.frequencies().omegaMax * dampedStepFactor(0.3);
     EXPECT_NO_THROW(Simulation(cubeTestSpecimen(3, 3, 3, kL0, m, lp), m, lp, bare));
@@ -302,10 +308,11 @@ bool sameBits(const std::vector<double>& a, const std::vector<double>& b) {
 }  // namespace
 
 TEST(Dynamics, SameSeedIsBitIdenticalForAnyThreadCount) {
-    const FullRun r1 = runWithThreads(1, 5), r2 = runWithThreads(2, 5), other = runWithThreads(1, 6);
+    // Seed 2 separates (at the defaults' step, 0.9 of 2/omega_max; of seeds 1-12, 7 do by the final strain).
+    const FullRun r1 = runWithThreads(1, 2), r2 = runWithThreads(2, 2), other = runWithThreads(1, 6);
     const RunSummary &a = r1.summary, &b = r2.summary;
     ASSERT_FALSE(r1.curve.empty());
-    std::printf("[ threads ] 3^3 seed 5: %lld steps, %zu records, stop %s, peak %.6f MPa, broken %lld\n",
+    std::printf("[ threads ] 3^3 seed 2: %lld steps, %zu records, stop %s, peak %.6f MPa, broken %lld\n",
                 (long long)a.steps, r1.curve.size(), a.stopReason.c_str(), a.peakStress / 1e6,
                 (long long)r1.curve.back().broken);
     EXPECT_EQ(a.stopReason, "separated");
@@ -532,6 +539,7 @@ TEST(DirectIntegrator, WeightIsCarriedByTheHeldFacesAndItsWorkBalances) {
     LoadingParams lp;
     RunParams rp;
     rp.threads = 1, rp.zeta = 1.0, rp.gravity = 100.0, rp.recordEvery = 1;  // each state read alone
+    rp.dtSafety = 0.656;  // the bookkeeping's error grows as dt^2: 1.2e-3 of the work after, at the default 0.9
     Simulation sim(heldCube(m, lp), m, lp, rp);
     const Lattice& lat = sim.lattice();
     double weight = 0;  // of the nodes whose z is free

@@ -30,12 +30,12 @@
 
 // Its parameters.
 #define LDEM_BAR_DASHPOT_PARAMETERS(X)                                                                       \
-    X(double, zetaHigh, "zeta_high", 0.2, "", Domain::closedOpen(0, 1),                                      \
+    X(double, zetaHigh, "zeta_high", 0.5, "", Domain::closedOpen(0, 1),                                      \
       "numerical damping: the ratio, on the highest mode omega_max, of dashpots in the bars that have left "   \
       "their elastic branch, acting while such a bar is in compression (zeta_high omega/omega_max on mode "    \
       "omega); they damp the modes that clap across closing cracks; 0: none (then keep dt_safety at 0.4); "    \
       "the stable time step shrinks by the factor sqrt(1 + zeta_high^2) - zeta_high (dashpot_velocity lagged)") \
-    X(bool, dashpotPredicted, "dashpot_velocity", false, "", Domain::choices({"lagged", "predicted"}),        \
+    X(bool, dashpotPredicted, "dashpot_velocity", true, "", Domain::choices({"lagged", "predicted"}),        \
       "the velocity the bar dashpots read: lagged, v(n-1/2); predicted, v(n-1/2) + dt/2 f/m with f the "        \
       "bars' forces at n, stable up to the undamped 2/omega_max while zeta_high omega_max dt <= 1, at the "     \
       "cost of a second pass over the bars whose dashpots act")
