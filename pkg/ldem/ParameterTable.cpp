@@ -125,7 +125,7 @@ const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults() {
 }
 
 const std::vector<std::pair<std::string, ParamValue>>& specimenOwnDefaults() {
-    static const std::vector<std::pair<std::string, ParamValue>> own = {{"rate_periods", kSpecimenRatePeriods}};
+    static const std::vector<std::pair<std::string, ParamValue>> own = {{"rate_periods", kRatePeriods}};
     return own;
 }
 

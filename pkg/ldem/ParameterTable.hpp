@@ -54,7 +54,7 @@ const std::vector<std::pair<std::string, ParamValue>>& cubeOwnDefaults();
 CubeTestParams cubeTestDefaults();
 // A specimen's own defaults over the table's, for one described in a file
 // (py/ldem/specimen.py): rule (c) sets its rate from its own fundamental
-// period, eps_p in kSpecimenRatePeriods periods (dynamics/QuasiStatic.hpp), where the
+// period, eps_p in kRatePeriods periods (dynamics/QuasiStatic.hpp), where the
 // table's strain_rate, a cube's, is a guess. A file that gives strain_rate is driven at it.
 const std::vector<std::pair<std::string, ParamValue>>& specimenOwnDefaults();
 

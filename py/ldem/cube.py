@@ -116,17 +116,21 @@ def run_test(test, observers=(), simulation=None, previous_rows=(), probes=()) -
 # and a run whose kinetic energy at the peak is above KINETIC_AT_PEAK_LIMIT of
 # the work is flagged.
 KINETIC_AT_PEAK_LIMIT = _core.KINETIC_AT_PEAK_LIMIT
-# Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer periods of its own mode is warned.
+# Rule (c) (dynamics/QuasiStatic.hpp): a drive that strains eps_p in fewer periods of its own mode is
+# warned; RATE_PERIODS at a constant drive, PACED_RATE_PERIODS under the crack pace (crack_pace < 1).
 RATE_PERIODS = _core.RATE_PERIODS
+PACED_RATE_PERIODS = _core.PACED_RATE_PERIODS
 
 
-def quasi_static(summary) -> dict:
+def quasi_static(summary, crack_pace: float) -> dict:
     """The run's loading speed for summary.json, as the core measured it: the
     drive's step over eps_p, the periods 2 pi/omega_d it takes to strain eps_p
-    (rule (c): at least RATE_PERIODS) and the kinetic energy over the external
-    work at the record of the largest stress; flagged above KINETIC_AT_PEAK_LIMIT."""
+    (rule (c): at least RATE_PERIODS, or PACED_RATE_PERIODS when paced) and the
+    kinetic energy over the external work at the record of the largest stress;
+    flagged above KINETIC_AT_PEAK_LIMIT."""
+    rule = PACED_RATE_PERIODS if crack_pace < 1 else RATE_PERIODS
     return {"strain_rate": summary.drive_strain_rate, "drive_step_over_eps_p": summary.drive_step_over_eps_p,
-            "periods_to_eps_p": summary.drive_periods_to_eps_p, "rate_periods": RATE_PERIODS,
+            "periods_to_eps_p": summary.drive_periods_to_eps_p, "rate_periods": rule,
             "kinetic_over_work_at_peak": summary.kinetic_over_work_at_peak,
             "kinetic_limit": KINETIC_AT_PEAK_LIMIT, "flagged": summary.quasi_static_flagged}
 
@@ -216,6 +220,12 @@ def _event(e) -> dict:
     return {"step": e.step, "time_s": e.time, "mean_strain": e.mean_strain, "fracture_energy_J": e.fracture}
 
 
+def _run_parameters(test) -> dict:
+    """The run's parameters by name: a CubeTest's, or a specimen file's (under "parameters")."""
+    p = test.parameters()
+    return p.get("parameters", p)
+
+
 def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
     u_min = sim.min_fracture_energy if sim.min_fracture_energy > 0 else None  # None: no ligament declared
     s = {"status": status}
@@ -240,7 +250,7 @@ def _summary_dict(test, sim, curve, summary, wall_s, status) -> dict:
             "U_mincut_J": None if _core.mpi_launched() else cheapest_cut(sim),
             "energy_balance_error": summary.energy_balance_error,
             "energy_error": summary.energy_error,
-            "quasi_static": quasi_static(summary),
+            "quasi_static": quasi_static(summary, _run_parameters(test)["crack_pace"]),
             "stop_reason": summary.stop_reason,
         })
     elif len(curve["stress_MPa"]):  # failed run: the core's summary as of its last record (the tracked peak,

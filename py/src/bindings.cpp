@@ -275,6 +275,7 @@ PYBIND11_MODULE(_core, m) {
     m.attr("DRIVE_STEP_LIMIT") = kDriveStepLimit;
     m.attr("KINETIC_AT_PEAK_LIMIT") = kKineticAtPeakLimit;
     m.attr("RATE_PERIODS") = kRatePeriods;
+    m.attr("PACED_RATE_PERIODS") = kPacedRatePeriods;
     m.def("drive_step", &driveStep, py::arg("strain_rate"), py::arg("dt"), py::arg("eps_p"),
           "the drive's displacement in one step over eps_p x the gauge length");
     m.def("brittle_warning", &brittleWarning, py::arg("material"), py::arg("L0"),

@@ -17,11 +17,11 @@ def test_each_specimen_runs_at_its_drive_and_a_quarter_of_its_rate():
     assert quarter.strain_rate == pytest.approx(cube.strain_rate / 4)
     for name in ("d50_beam", "eccentric_beam", "l_panel"):
         at, q = by[name].test(ROOT, 3, 1.0, {}), by[name].test(ROOT, 3, 0.25, {})
-        assert at.build.params["rate_periods"] == study.RULE_PERIODS == 3  # rule (c)
-        assert q.build.params["rate_periods"] == 12 and q.seed == at.seed == 3
+        assert at.build.params["rate_periods"] == study.RULE_PERIODS == 12  # rule (c)
+        assert q.build.params["rate_periods"] == 48 and q.seed == at.seed == 3
     assert by["eccentric_beam"].test(ROOT, 1, 1.0, {}).final_strain == 9e-4  # past its peak at 4.2e-4
-    runs = study.cases(study.plan([by["l_panel"]], 1), ROOT, {}, periods=12)  # --rate-periods 12
-    assert [t.build.params["rate_periods"] for t in runs] == [12, 48]
+    runs = study.cases(study.plan([by["l_panel"]], 1), ROOT, {}, periods=3)  # --rate-periods 3
+    assert [t.build.params["rate_periods"] for t in runs] == [3, 12]
 
 
 def test_a_small_cube_s_rate_effect_is_read_from_its_two_runs(tmp_path):

@@ -14,7 +14,7 @@ The beams and the panel are driven by rule (c), eps_p in RULE_PERIODS periods
 periods. OUT/cases/{specimen}_{rate|quarter}_s{seed}/, OUT/criteria.csv (a
 row a run), OUT/criteria.md (a row a specimen).
 
-    ldem study criteria [--seeds 3] [--specimens NAME,...] [--rate-periods 3] [--jobs J] [--set NAME=VALUE ...]
+    ldem study criteria [--seeds 3] [--specimens NAME,...] [--rate-periods 12] [--jobs J] [--set NAME=VALUE ...]
                         [--root .] [--out OUT]
 
 --set changes every run (e.g. the dynamics before a change: --set
@@ -29,7 +29,7 @@ from typing import Callable, List, Optional, Sequence
 import numpy as np
 
 from ... import criteria, io
-from ...cube import CubeTest
+from ...cube import RATE_PERIODS, CubeTest
 from ...markdown import md_table
 from ...specimen import SpecimenTest
 from ..cases import Named, case_dir, load_curve, load_summary
@@ -37,7 +37,7 @@ from ..executors import run_cases
 from ..options import parse_names, seed_count, study_settings
 from ..registry import Study, register
 
-RULE_PERIODS = 3.0  # rule (c): the gauge strains by eps_p in this many periods of the drive's mode
+RULE_PERIODS = RATE_PERIODS  # rule (c) at a constant drive: eps_p in this many periods of the drive's mode
 QUARTER = 0.25
 TARGETS = {"a": 0.02, "peak": 0.01, "energy": 0.02}  # (a) at most; (b) the peak's and the energy's change
 
