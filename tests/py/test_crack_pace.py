@@ -3,7 +3,7 @@ its parameters come from the table; at crack_pace 1 the adaptive drive is the
 fixed drive bit for bit until the load loss; and on the 0.48 m uniform cube,
 where a constant rate feeds the running crack, the paced drive's fracture
 energy at the load loss moves by less than 2 % when the rate is quartered
-(criterion (b) of results/dynamics/criteria.md), the unpaced one's by more than 4 %;
+(criterion (b) of results/criteria/README.md), the unpaced one's by more than 4 %;
 and on the coarse notched beam, whose own motion under the drive is near 1e-3
 of the work, the pace (which counts the kinetic energy less that motion)
 leaves the peak where the unpaced drive puts it. The pace is the cube's default (cube.CUBE_DEFAULTS)."""
