@@ -55,11 +55,17 @@ def test_the_tail_damping_leaves_the_paced_drive_alone_until_the_load_loss(tmp_p
     assert relative["load_loss"] == absolute["load_loss"]
 
 
+# The step these measurements were made at, the lagged dashpots' 0.656 of 2/omega_max: at the default 0.9 the
+# constant rate leaves a balance error of 2.13e-3 and 2.10e-3 at this load loss (seed 1; the paced default: 1.8e-3; the
+# criteria study, results/criteria/, measures the pace at the default step on three seeds).
+LAGGED_STEP = ["--dashpot-velocity", "lagged", "--zeta-high", "0.2", "--dt-safety", "0.8"]
+
+
 @pytest.fixture(scope="module")
 def cube048(tmp_path_factory):
     """The 0.48 m uniform cube at its default drive (paced: cube.CUBE_DEFAULTS) and at the constant rate, each at
     0.02 /s and a quarter of it."""
-    return {(pace, q): run(tmp_path_factory, "--size", "0.48", "--strain-rate", str(0.02 / q),
+    return {(pace, q): run(tmp_path_factory, "--size", "0.48", "--strain-rate", str(0.02 / q), *LAGGED_STEP,
                            *(["--crack-pace", pace] if pace == "1" else []))
             for pace in ("default", "1") for q in (1, 4)}
 

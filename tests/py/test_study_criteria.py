@@ -48,3 +48,6 @@ def test_the_study_refuses_to_let_set_change_what_it_sets(capsys):
     assert "the study sets it" in capsys.readouterr().err
     assert main(["study", "criteria", "--rate-periods", "0", "--out", "/nonexistent/x"]) == 2
     assert "--rate-periods must be positive (got 0.0)" in capsys.readouterr().err
+    # Run outside the checkout without --root: the files are not found, and the message says what to do.
+    assert main(["study", "criteria", "--root", "/nonexistent", "--specimens", "d50_beam", "--out", "/nonexistent/x"]) == 2
+    assert "no such file: run from the ldem checkout, or give its folder as --root" in capsys.readouterr().err

@@ -158,6 +158,10 @@ def run_criteria(out: str, root: str = ".", seeds: int = 3, specimens: Sequence[
     if not periods > 0:
         raise ValueError(f"--rate-periods must be positive (got {periods})")
     settings = {"threads": 1, **(settings or {})}
+    missing = [s.file for s in specimens if s.file and not os.path.isfile(os.path.join(root, s.file))]
+    if missing:
+        raise ValueError(f"{os.path.join(root, missing[0])}: no such file: run from the ldem checkout, or give "
+                         f"its folder as --root")
     todo = plan(specimens, seeds)
     tests = cases(todo, root, settings, periods)
     run_cases(tests, out, jobs=jobs, log=log)
