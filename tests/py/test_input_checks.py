@@ -126,7 +126,7 @@ BRITTLE = "every bar is perfectly brittle: all 130 drew a G_f below E A eps_p^2 
                            "15.7, above 1"),
     (["--ramp-time", "1e9"], "ramp_time 1e+09 s is above eps_p / strain_rate = 0.00315 s"),
     (["--final-strain", "1e-9"], "comes before the first record (at mean strain"),
-    (["--strain-rate", "1e-9"], "steps of 2.15e-06 s to strain eps_p: more than 1000000 before any bar can crack"),
+    (["--strain-rate", "1e-9"], "steps of 2.95e-06 s to strain eps_p: more than 1000000 before any bar can crack"),
 ])
 def test_absurd_inputs_are_refused_with_their_rule(cli, tmp_path, args, message):
     line = _error(cli("cube", *TINY, "--out", str(tmp_path / "o"), *args))

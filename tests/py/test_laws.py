@@ -23,7 +23,10 @@ def test_the_law_parameter_offers_exactly_the_registered_laws():
 
 @pytest.mark.parametrize("law", list(_core.bar_laws))
 def test_each_law_runs_and_writes_its_state_to_bars_vtu(tmp_path, law):
-    r = ldem.run_cube(ldem.CubeTest(**TINY, law=law), out=str(tmp_path), progress=False, writers=["summary", "vtk"])
+    # At the lagged dashpots' step, where the closed-form check was measured (at the default 0.9 of
+    # 2/omega_max the tiny cube closes to 8.7e-3, 7.0e-3 and 5.4e-3).
+    r = ldem.run_cube(ldem.CubeTest(**TINY, law=law, dashpot_velocity="lagged", zeta_high=0.2, dt_safety=0.8),
+                      out=str(tmp_path), progress=False, writers=["summary", "vtk"])
     sim, s = r.sim, r.summary
     assert s["parameters"]["law"] == law
     # the balance closes on the law's closed-form dissipated energy (measured 3.6e-3, 2.6e-3, 2.8e-3)
