@@ -21,18 +21,28 @@ def tiny(D, notch, material, seed, x_ref):
     return whole_curves.WholeCurve(D, notch, material, seed, x_ref, gauge=0.02, L0=0.01)
 
 
-def test_the_fit_recovers_a_tiny_beams_own_parameters_within_its_tolerance(tmp_path):
-    """On the protocol's three seeds (FIT_SEEDS): one seed of a beam 4 modules deep moves its peak by up to 2 %
-    between neighbouring parameters (which bar breaks first), the tolerance itself, and its fit wanders."""
-    truth = dict(START, eps_p=1.25 * START["eps_p"], Gf_mean=0.8 * START["Gf_mean"])
-    x_ref, qs = None, []
+def _log_quantities(material, x_ref):
+    """ln of the mean (peak [kN], work [J]) over FIT_SEEDS of the tiny beam, and its seeds' curves' x_ref."""
+    qs = []
     for seed in transfer.FIT_SEEDS:
-        run = tiny(TINY[0] * 1e-3, TINY[1], truth, seed, 0.03).run()
+        run = tiny(TINY[0] * 1e-3, TINY[1], material, seed, 0.03).run()
         curve = (np.asarray(run.curve["gauge_m"]) * 1e3, np.asarray(run.curve["stress_MPa"]) * 1e3)
         x_ref = x_ref or cq.cmod_at_peak(curve)
         qs.append(cq.quantities(curve, x_ref))
     assert not any(math.isnan(q["work_J"]) for q in qs)
-    t = transfer.Target(TINY, np.mean([q["peak_kN"] for q in qs]), x_ref, np.mean([q["work_J"] for q in qs]))
+    return np.log([np.mean([q["peak_kN"] for q in qs]), np.mean([q["work_J"] for q in qs])]), x_ref
+
+
+def test_the_fit_recovers_a_tiny_beams_own_parameters_within_its_tolerance(tmp_path):
+    """On the protocol's three seeds (FIT_SEEDS): one seed of a beam 4 modules deep moves its peak by up to 2 %
+    between neighbouring parameters (which bar breaks first), the tolerance itself, and its fit wanders.
+    The targets fix the parameters only as far as J = d ln(peak, work) / d ln(eps_p, Gf_mean) lets them:
+    within TOLERANCE the error dx = ln(fit / truth) is bounded by sqrt(2) TOLERANCE / s along each right
+    singular vector of J with singular value s. This beam's work to 4 CMOD_peak hardly reads Gf_mean
+    (s_min about 0.07, so 40 % along eps_p^-0.27 Gf_mean); eps_p^0.96 Gf_mean^0.27 is fixed to 3 %."""
+    truth = dict(START, eps_p=1.25 * START["eps_p"], Gf_mean=0.8 * START["Gf_mean"])
+    q_truth, x_ref = _log_quantities(truth, None)
+    t = transfer.Target(TINY, *np.exp(q_truth[:1]), x_ref, *np.exp(q_truth[1:]))
     result = transfer.fit(t, START, transfer.evaluator(str(tmp_path), t, 1, tiny, log=lambda s: None),
                           log=lambda s: None)
     assert result["converged"], result["rounds"]
@@ -40,9 +50,17 @@ def test_the_fit_recovers_a_tiny_beams_own_parameters_within_its_tolerance(tmp_p
     assert max(abs(e) for e in best["error"]) <= transfer.TOLERANCE
     assert len(result["rounds"]) > 1  # the start was off: the iteration moved
     assert abs(best["error"][0]) < abs(result["rounds"][0]["error"][0])
-    # the two targets fix the two parameters: back near the truth
-    assert result["material"]["eps_p"] == pytest.approx(truth["eps_p"], rel=0.05)
-    assert result["material"]["Gf_mean"] == pytest.approx(truth["Gf_mean"], rel=0.15)
+    # J at the truth, by differences of 10 % in each parameter
+    step = math.log(1.1)
+    J = np.column_stack([(_log_quantities(dict(truth, **{k: 1.1 * truth[k]}), x_ref)[0] - q_truth) / step
+                         for k in transfer.FITTED])
+    _, s, vt = np.linalg.svd(J)
+    dx = np.log([result["material"][k] / truth[k] for k in transfer.FITTED])
+    start = np.log([START[k] / truth[k] for k in transfer.FITTED])
+    bound = math.sqrt(2) * transfer.TOLERANCE / s
+    assert np.all(np.abs(vt @ dx) <= bound), (vt @ dx, bound)
+    # the combination the targets fix well came back from the start's 15 % to within its bound
+    assert abs(vt[0] @ dx) < 0.25 * abs(vt[0] @ start)
 
 
 def _data(folder):
