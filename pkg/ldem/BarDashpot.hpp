@@ -21,6 +21,7 @@
 // node's in a fixed order (by bar layer, then bar), and the opening work
 // s_k F_k dt/2 (s_k still from v(n-1/2): the same bookkeeping).
 #pragma once
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -28,6 +29,10 @@
 #include "ldem/LayerSweep.hpp"
 
 namespace ldem {
+
+struct ActingBar {
+    std::int32_t row, p;
+};
 
 // The dashpots' state the force loop reads and writes.
 struct DashpotState {
@@ -41,8 +46,10 @@ struct DashpotState {
     std::vector<std::uint8_t> rows;   // predicted: per bar row, whether some bar of it has a dashpot now
     std::vector<std::uint8_t> layers; // predicted: per bar layer, whether some row of it has a dashpot now
     bool slab = false;                // predicted: a slab's halo takes v~ from its owner, so every layer waits
-    Field3 velocity;                  // predicted: v~ of the nodes that wait, at this step [m/s]
-    BarForceBuffers forces;           // predicted: per bar layer, each bar's dashpot force on its A node [N]
+    Field3 velocity;                  // predicted, a slab: v~ of its nodes at this step [m/s]
+    BarForceBuffers forces;           // predicted: per bar layer, each acting bar's dashpot force on its A node [N]
+    // predicted: per bar layer, its acting bars (coefficient > 0) in row order: row and place in it.
+    std::vector<std::vector<ActingBar>> acting;
     // Whether a dashpot acts in bar layers m-2..m, which pull node layer m (a bar of layer k pulls
     // node layers k..k+2).
     bool pulled(int m) const {
@@ -64,8 +71,16 @@ inline DashpotState dashpotState(double beta, std::int64_t bars, int layers, std
     d.opening.assign(std::size_t(layers), 0.0);
     if (predicted)
         d.predicted = true, d.coefficient.assign(std::size_t(bars), 0.0), d.rows.assign(std::size_t(rows), 0),
-        d.layers.assign(std::size_t(layers), 0), d.slab = slab, d.velocity = Field3(nodes);
+        d.layers.assign(std::size_t(layers), 0), d.slab = slab, d.velocity = Field3(slab ? nodes : 0),
+        d.acting.resize(std::size_t(layers));
     return d;
+}
+
+// One DOF's predicted velocity v~ = v(n-1/2) + dt/2 f*/m, or v on a held DOF: the one formula
+// wherever v~ is read (the same bits on one slab and on many). Its fused multiply-add is
+// spelled out, as the compiler fused it before, so that no caller's context fuses it otherwise.
+inline double predictedVelocity(bool held, double v, double f, double halfDt, double invMass) {
+    return held ? v : std::fma(halfDt * f, invMass, v);
 }
 
 // What the force pass needs of them: their state and v(n-1/2); none while state is null.

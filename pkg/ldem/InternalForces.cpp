@@ -107,30 +107,44 @@ void linearStiffnessProduct(const Lattice& lat, const Field3& x, BarForceBuffers
     layeredForces(lat, x, g, y, LinearBars{}, [](int) {});
 }
 
-void predictedVelocity(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& v,
-                       const Field3& f, DashpotState& d) {
+namespace {
+// d.w with its fused multiply-adds spelled out: left to the compiler, they were fused one way in
+// dashpotLayer's loop on one slab and the other way on many (the order the one loop had before).
+double dot(double dx, double dy, double dz, double wx, double wy, double wz) {
+    return std::fma(dz, wz, std::fma(dx, wx, dy * wy));
+}
+}  // namespace
+
+void predictedVelocities(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v, const Field3& f,
+                         DashpotState& d) {
     // The components by pointer: Field3's [c] selects its vector by a branch at every use.
     const double* vc[3] = {v.x.data(), v.y.data(), v.z.data()};
     const double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
     double* wc[3] = {d.velocity.x.data(), d.velocity.y.data(), d.velocity.z.data()};
     const double* invMass = lat.invMass.data();
-    const auto [first, count] = lat.layerNodes(m);
-    for (int c = 0; c < 3; ++c)
-        for (std::int32_t i = first; i < first + count; ++i)
-            wc[c][i] = (mask[i] >> c) & 1 ? vc[c][i] : vc[c][i] + d.halfDt * fc[c][i] * invMass[i];
-}
-
-void predictedVelocities(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v, const Field3& f,
-                         DashpotState& d) {
 #pragma omp parallel for schedule(static)
-    for (int m = lat.ownBegin; m < lat.ownEnd; ++m)
-        if (d.waits(m)) predictedVelocity(lat, m, mask, v, f, d);
-    exchangeHalo(lat, d.velocity);  // (a slab's halo masses are partial: its owner's v~)
+    for (int m = lat.ownBegin; m < lat.ownEnd; ++m) {
+        const auto [first, count] = lat.layerNodes(m);
+        for (int c = 0; c < 3; ++c)
+            for (std::int32_t i = first; i < first + count; ++i)
+                wc[c][i] = predictedVelocity((mask[i] >> c) & 1, vc[c][i], fc[c][i], d.halfDt, invMass[i]);
+    }
+    exchangeHalo(lat, d.velocity);
 }
 
-void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, DashpotState& d) {
+void dashpotLayer(const Lattice& lat, int k, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                  const Field3& f, DashpotState& d) {
+    std::vector<ActingBar>& acting = d.acting[std::size_t(k)];
+    acting.clear();
     if (!d.layers[std::size_t(k)]) return;
-    const Field3& w = d.velocity;
+    // v~ of node i: a slab's from its exchange, else from v and f* here (only the acting bars' ends).
+    const double* vc[3] = {v.x.data(), v.y.data(), v.z.data()};
+    const double* fc[3] = {f.x.data(), f.y.data(), f.z.data()};
+    const double* wc[3] = {d.velocity.x.data(), d.velocity.y.data(), d.velocity.z.data()};
+    const double* invMass = lat.invMass.data();
+    const auto vTilde = [&](int c, std::int32_t i) {
+        return d.slab ? wc[c][i] : predictedVelocity((mask[i] >> c) & 1, vc[c][i], fc[c][i], d.halfDt, invMass[i]);
+    };
     double opening = 0;
     for (std::int32_t r = lat.barLayerStart[k]; r < lat.barLayerStart[k + 1]; ++r) {
         if (!d.rows[std::size_t(r)]) continue;
@@ -141,17 +155,15 @@ void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, D
         double* force = &d.force[std::size_t(row.first)];
         double *gx = d.forces.x(k) + row.inLayer, *gy = d.forces.y(k) + row.inLayer, *gz = d.forces.z(k) + row.inLayer;
         double sF = 0;  // sum of s F over the row (its opening work, without dt/2L)
-        for (std::int64_t p = 0; p < row.count; ++p) {
-            if (c[p] == 0) {  // (most bars of a row whose dashpots act have none: their ends unread)
-                force[p] = gx[p] = gy[p] = gz[p] = 0;
-                continue;
-            }
-            const double dx = fam.d0[0] + u.x[B + p] - u.x[A + p], dy = fam.d0[1] + u.y[B + p] - u.y[A + p],
-                         dz = fam.d0[2] + u.z[B + p] - u.z[A + p];
-            const double s = dx * (v.x[B + p] - v.x[A + p]) + dy * (v.y[B + p] - v.y[A + p]) +
-                             dz * (v.z[B + p] - v.z[A + p]);
-            const double sp = dx * (w.x[B + p] - w.x[A + p]) + dy * (w.y[B + p] - w.y[A + p]) +
-                              dz * (w.z[B + p] - w.z[A + p]);
+        for (std::int32_t p = 0; p < row.count; ++p) {
+            if (c[p] == 0) continue;  // (most bars of a row whose dashpots act have none: force 0 since lawBars)
+            acting.push_back({r, p});
+            const std::int32_t a = A + p, b = B + p;
+            const double dx = fam.d0[0] + u.x[b] - u.x[a], dy = fam.d0[1] + u.y[b] - u.y[a],
+                         dz = fam.d0[2] + u.z[b] - u.z[a];
+            const double s = dot(dx, dy, dz, v.x[b] - v.x[a], v.y[b] - v.y[a], v.z[b] - v.z[a]);
+            const double sp = dot(dx, dy, dz, vTilde(0, b) - vTilde(0, a), vTilde(1, b) - vTilde(1, a),
+                                  vTilde(2, b) - vTilde(2, a));
             const double F = c[p] * sp * fam.invL;
             force[p] = F;
             sF += s * F;
@@ -164,26 +176,23 @@ void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, D
 }
 
 void addDashpotForces(const Lattice& lat, int m, const DashpotState& d, Field3& f) {
-    // The rows of bar layers m-2, m-1, m whose dashpots act, in order: a row's A ends lie in one
-    // node layer, its B ends in one, so a row adds to node layer m at one end, both or neither.
+    // The acting bars of bar layers m-2, m-1, m, row by row: a row's A ends lie in one node layer,
+    // its B ends in one, so a row adds to node layer m at one end, both or neither; all its A ends
+    // first, then its B ends (a node may be the B end of one bar and the A end of the next).
     for (int k = std::max(0, m - 2); k <= m; ++k) {
-        if (!d.layers[std::size_t(k)]) continue;
-        for (std::int32_t r = lat.barLayerStart[k]; r < lat.barLayerStart[k + 1]; ++r) {
-            if (!d.rows[std::size_t(r)]) continue;
-            const BarRow& row = lat.barRows[r];
-            const double *gx = d.forces.x(k) + row.inLayer, *gy = d.forces.y(k) + row.inLayer,
-                         *gz = d.forces.z(k) + row.inLayer;
-            const double sign[2] = {lat.layerOfNode(row.nodeA) == m ? 1.0 : 0.0,
-                                    lat.layerOfNode(row.nodeB) == m ? -1.0 : 0.0};
-            const std::int32_t ends[2] = {row.nodeA, row.nodeB};
-            for (int e = 0; e < 2; ++e) {
-                if (sign[e] == 0) continue;
-                double *fx = &f.x[ends[e]], *fy = &f.y[ends[e]], *fz = &f.z[ends[e]];
-                const double sg = sign[e];
-#pragma omp simd
-                for (std::int64_t p = 0; p < row.count; ++p)
-                    fx[p] += sg * gx[p], fy[p] += sg * gy[p], fz[p] += sg * gz[p];
-            }
+        const std::vector<ActingBar>& acting = d.acting[std::size_t(k)];
+        const double *gx = d.forces.x(k), *gy = d.forces.y(k), *gz = d.forces.z(k);
+        for (std::size_t i = 0, j; i < acting.size(); i = j) {
+            const BarRow& row = lat.barRows[acting[i].row];
+            for (j = i; j < acting.size() && acting[j].row == acting[i].row; ++j) {}
+            const auto addEnds = [&](std::int32_t end, double sign) {
+                if (lat.layerOfNode(end) != m) return;
+                for (std::size_t q = i; q < j; ++q) {
+                    const std::int32_t p = acting[q].p, b = row.inLayer + p;
+                    f.x[end + p] += sign * gx[b], f.y[end + p] += sign * gy[b], f.z[end + p] += sign * gz[b];
+                }
+            };
+            addEnds(row.nodeA, 1.0), addEnds(row.nodeB, -1.0);
         }
     }
 }

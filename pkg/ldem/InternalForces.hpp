@@ -163,17 +163,16 @@ void layeredForces(const Lattice& lat, const Field3& u, BarForceBuffers& g, Fiel
 
 // The dashpots read at the predicted velocity (BarDashpot.hpp), once f holds every node's f*
 // (the bars' forces; the weight, the same on both ends of a bar, and the mass damping,
-// D_f dt/2 ~ 1e-6, are left out). v~ = v(n-1/2) + dt/2 f*/m on free DOFs, v on held ones, of
-// the layers that wait (d.velocity: the owned nodes', then the halo's from their owners).
+// D_f dt/2 ~ 1e-6, are left out). On one slab, v~ of an acting bar's ends is read from v and
+// f* as the bar is read. A slab's halo masses are partial, so there v~ comes from d.velocity:
+// its owned nodes' v~, then the halo's from their owners (predictedVelocities).
 void predictedVelocities(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& v, const Field3& f,
                          DashpotState& d);
-// The same for node layer m alone (owned).
-void predictedVelocity(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& v,
-                       const Field3& f, DashpotState& d);
-// Bar layer k's dashpots: F = coefficient d.(v~_B - v~_A)/L of each bar whose row acts, kept,
-// its opening work added, its force on node A into d.forces.
-void dashpotLayer(const Lattice& lat, int k, const Field3& u, const Field3& v, DashpotState& d);
-// f of node layer m += the dashpot forces of the acting rows of bar layers m-2 .. m, in that
+// Bar layer k's dashpots: F = coefficient d.(v~_B - v~_A)/L of each acting bar, kept, its
+// opening work added, its force on node A into d.forces, the bar into d.acting[k].
+void dashpotLayer(const Lattice& lat, int k, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                  const Field3& f, DashpotState& d);
+// f of node layer m += the forces of the acting dashpots of bar layers m-2 .. m, in that
 // order: each node's sum in a fixed order.
 void addDashpotForces(const Lattice& lat, int m, const DashpotState& d, Field3& f);
 
@@ -189,31 +188,30 @@ void settleLayer(const Lattice& lat, int m, const DashpotState& d, Field3& f, Af
 template <class AfterNodes>
 void predictedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                        DashpotState& d, Field3& f, AfterNodes afterNodes) {
-    predictedVelocities(lat, mask, v, f, d);
-    layerSweep(lat, d.forces, [&](int k) { dashpotLayer(lat, k, u, v, d); },
+    if (d.slab) predictedVelocities(lat, mask, v, f, d);
+    layerSweep(lat, d.forces, [&](int k) { dashpotLayer(lat, k, mask, u, v, f, d); },
                [&](int m) { settleLayer(lat, m, d, f, afterNodes); });
 }
 
 // On one thread and one rank they follow the force sweep instead, two layers behind: node
-// layer m has its f* (afterLayer): it moves, or takes v~ if it waits; then bar layer m-2's
-// dashpots (their ends, node layers m-2 .. m, have v~), and node layer m-2 settles (it has
-// bar layers m-4 .. m-2's). No layer waits for a second sweep; the last two settle after it
+// layer m has its f* (afterLayer): it moves, unless it waits; then bar layer m-2's dashpots
+// (their ends, node layers m-2 .. m, have f*), and node layer m-2 settles (it has bar layers
+// m-4 .. m-2's). No layer waits for a second sweep; the last two settle after it
 // (followedDashpots). The same sums in the same order as predictedDashpots: the same bits.
 template <class AfterNodes>
 void followLayer(const Lattice& lat, int m, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                  DashpotState& d, Field3& f, AfterNodes afterNodes) {
     if (m == 0) d.forces.prepare(lat, 1);
-    if (d.waits(m)) predictedVelocity(lat, m, mask, v, f, d);
-    else afterNodes(m);
+    if (!d.waits(m)) afterNodes(m);
     if (m < 2) return;
-    dashpotLayer(lat, m - 2, u, v, d);
+    dashpotLayer(lat, m - 2, mask, u, v, f, d);
     settleLayer(lat, m - 2, d, f, afterNodes);
 }
 template <class AfterNodes>
-void followedDashpots(const Lattice& lat, const Field3& u, const Field3& v, DashpotState& d, Field3& f,
-                      AfterNodes afterNodes) {
+void followedDashpots(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
+                      DashpotState& d, Field3& f, AfterNodes afterNodes) {
     for (int k = std::max(0, lat.forceLayers() - 2); k < lat.forceLayers(); ++k)
-        dashpotLayer(lat, k, u, v, d), settleLayer(lat, k, d, f, afterNodes);
+        dashpotLayer(lat, k, mask, u, v, f, d), settleLayer(lat, k, d, f, afterNodes);
 }
 
 // f = forces of all bars on the nodes at displacement u with the bar law

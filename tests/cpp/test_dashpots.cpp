@@ -78,9 +78,9 @@ Specimen tallCube() {
     return cubeTestSpecimen(3, 3, 8, kL0, m, lp);
 }
 
-DashpotState dashpots(const Lattice& lat, double beta, double dt, bool predicted = false) {
+DashpotState dashpots(const Lattice& lat, double beta, double dt, bool predicted = false, bool slab = false) {
     DashpotState d = dashpotState(beta, lat.numBars(), lat.numLayers(), std::int64_t(lat.barRows.size()),
-                                  lat.numNodes(), predicted);
+                                  lat.numNodes(), predicted, slab);
     d.halfDt = 0.5 * dt;
     return d;
 }
@@ -364,8 +364,7 @@ TEST(BarDashpots, OnlyTheLayersTheActingDashpotsPullWait) {
     law.below = lat.barRows[std::size_t(lat.barLayerStart[k + 1])].first;
     const CentralDifference cd(dt, 0.0);
     auto run = [&](bool everyLayer, int& waiting) {
-        DashpotState d = dashpots(lat, dashpotBeta(0.5, omegaMax), dt, true);
-        d.slab = everyLayer;
+        DashpotState d = dashpots(lat, dashpotBeta(0.5, omegaMax), dt, true, everyLayer);
         Field3 u = randomField(lat.numNodes(), 5, mask), v(lat.numNodes()), f(lat.numNodes());
         for (double* c : {u.x.data(), u.y.data(), u.z.data()})
             for (std::int64_t i = 0; i < lat.numNodes(); ++i) c[i] *= 1e-9;

@@ -80,7 +80,7 @@ public:
     void afterForces(const Lattice& lat, const std::vector<std::uint8_t>& mask, const Field3& u, const Field3& v,
                      Field3& f, const std::function<void(int)>& moveWaiting, bool followed) {
         if (!d_.predicted) return;
-        if (followed) followedDashpots(lat, u, v, d_, f, moveWaiting);
+        if (followed) followedDashpots(lat, mask, u, v, d_, f, moveWaiting);
         else predictedDashpots(lat, mask, u, v, d_, f, moveWaiting);
     }
     CentralDifference nodeUpdate(const CentralDifference& cd) {
