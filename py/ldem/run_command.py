@@ -202,7 +202,7 @@ def _snapshots(args) -> list:
 def report_run(result, args, edge: bool = False) -> int:
     """The lines a run prints (ldem cube, ldem run), in the specimen's own words (summary.json's labels: a
     cube's mean strain and normal stress, a beam's deflection/D and F/(bD)); exit 1 on an energy error."""
-    from .cube import label_words
+    from .cube import STOP_WORDS, label_words
 
     s, test = result.summary, result.test
     (strain, _), (stress, unit) = label_words(s["labels"]["strain"]), label_words(s["labels"]["stress"])
@@ -223,9 +223,8 @@ def report_run(result, args, edge: bool = False) -> int:
         print(f"converged at {strain} {conv['mean_strain']:.4e} (U grew by less than "
               f"{test.converged_growth:.0%} over the last doubling of the strain): U_final "
               f"{s['U_final_J']:.4g} J{of_min(s['U_final_J'])} (not U_num: it did not separate)")
-    elif s["stop_reason"] in ("final_strain", "past_peak", "stopped"):
-        stop = {"final_strain": "the final strain", "past_peak": "peak_stop_strain_ratio x the strain at the peak",
-                "stopped": "an observer's request"}[s["stop_reason"]]
+    elif s["stop_reason"] in STOP_WORDS:
+        stop = STOP_WORDS[s["stop_reason"]]
         aim = test.stop_at in ("separation", "converged")  # a run meant to separate: its energy is not U_num
         print(f"stopped at {stop} ({strain} {result.curve['mean_strain'][-1]:.4e})" + " before separation" * aim
               + f": the fracture energy at the end, {s['fracture_energy_J']:.4g} J{of_min(s['fracture_energy_J'])}"

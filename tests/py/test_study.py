@@ -109,6 +109,16 @@ def test_case_names_carry_non_default_parameters():
     assert study.case_name(CubeTest(zeta=0.030000000001)) != study.case_name(CubeTest(zeta=0.03))
 
 
+def test_a_case_line_says_where_a_run_stopped(tmp_path):
+    """A triangular cube stops past its peak, not "before separation": its line says where."""
+    [test] = study.size_effect_tests([0.04], 1, ["triangular"], **TINY)
+    log = []
+    [summary] = study.run_cases([test], str(tmp_path / "st"), log=log.append)
+    assert summary["stop_reason"] == "past_peak"
+    assert "stopped at peak_stop_strain_ratio x the strain at the peak, " in log[-1], log
+    assert "separation" not in log[-1]
+
+
 def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):
     out = str(tmp_path / "st")
     tests = study.size_effect_tests([0.04, 0.08], 2, ["uniform"], **TINY)
