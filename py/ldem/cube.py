@@ -175,11 +175,6 @@ def label_words(label: str) -> tuple:
     return name.strip(), unit.rstrip("]").strip()
 
 
-# Where a run that did not separate stopped, in words (summary.json's stop_reason).
-STOP_WORDS = {"final_strain": "the final strain", "past_peak": "peak_stop_strain_ratio x the strain at the peak",
-              "stopped": "an observer's request"}
-
-
 # The curve's columns, in curve.csv's order; stresses in MPa (the core's are Pa).
 CURVE_COLUMNS = ["step", "time_s", "mean_strain", "stress_MPa", "stress_top_MPa", "external_work_J", "kinetic_J",
                  "elastic_J", "fracture_J", "damping_J", "damaged_bars", "broken_bars"]

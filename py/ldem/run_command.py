@@ -202,7 +202,8 @@ def _snapshots(args) -> list:
 def report_run(result, args, edge: bool = False) -> int:
     """The lines a run prints (ldem cube, ldem run), in the specimen's own words (summary.json's labels: a
     cube's mean strain and normal stress, a beam's deflection/D and F/(bD)); exit 1 on an energy error."""
-    from .cube import STOP_WORDS, label_words
+    from .cube import label_words
+    from .runner import STOP_WORDS
 
     s, test = result.summary, result.test
     (strain, _), (stress, unit) = label_words(s["labels"]["strain"]), label_words(s["labels"]["stress"])

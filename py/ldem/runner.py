@@ -16,6 +16,11 @@ from .progress import ProgressBar
 from .signals import SignalsAtRecords
 
 
+# Where a run that did not separate stopped, in words (summary.json's stop_reason).
+STOP_WORDS = {"final_strain": "the final strain", "past_peak": "peak_stop_strain_ratio x the strain at the peak",
+              "stopped": "an observer's request"}
+
+
 def default_writers(plots: bool = True, checkpoints: bool = False, final_state: bool = False) -> list:
     """The writers of `ldem cube` and `ldem run`: the curve and the summary,
     with plots the pictures and the ParaView files, with checkpoints those,

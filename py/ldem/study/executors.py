@@ -9,8 +9,9 @@ import socket
 from typing import Callable, List, Optional, Sequence
 
 from .. import io
-from ..cube import STOP_WORDS, label_words
+from ..cube import label_words
 from ..progress import CaseProgress
+from ..runner import STOP_WORDS
 from ..signals import Terminated
 from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
 
