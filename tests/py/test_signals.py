@@ -274,6 +274,53 @@ def test_a_study_and_its_workers_stop_within_seconds(tmp_path):
         assert json.loads((c.parent / "summary.json").read_text())["status"] == "interrupted"
 
 
+# A study's pool of workers on synthetic cases of 40 KB each (a 200 mm beam's
+# pickle is 61 KB), whose runs sleep: the first ends at once, the others in
+# a minute. Spawned workers import this file as their main module, so the
+# fake run_case is theirs too.
+POOL_SCRIPT = """
+import os, sys, time
+from ldem.signals import Terminated, raise_on_signals
+from ldem.study import executors
+
+class Case:
+    def __init__(self, k):
+        self.k, self.payload = k, bytes(40_000)
+
+def run_case(test, case_dir):
+    end = time.monotonic() + (0.2 if test.k == 0 else 60.0)
+    while time.monotonic() < end:
+        time.sleep(0.02)
+    return {"k": test.k}
+
+executors.run_case = run_case
+
+if __name__ == "__main__":
+    raise_on_signals()
+    args = [(Case(k), f"case{k}") for k in range(6)]
+    try:
+        executors._run_in_processes(2, list(range(6)), args, lambda i, s: print("finished", i, flush=True))
+    except Terminated:
+        sys.exit(143)
+"""
+
+
+def test_a_study_with_cases_waiting_for_a_worker_stops_within_seconds(tmp_path):
+    """A case has ended, so the pool has queued the next ones, more than a
+    pipe holds: SIGTERM to the study alone ends it within the deadline. The
+    pool's queue once held the cases themselves; with its workers terminated,
+    nobody read the pipe, and the pool's shutdown waited for its writer
+    forever (Python 3.11 leaves the pipe's read end open)."""
+    script = tmp_path / "pool.py"
+    script.write_text(POOL_SCRIPT)
+    proc = subprocess.Popen(["/usr/bin/python3", str(script)], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, env=subprocess_env(), cwd=tmp_path, start_new_session=True)
+    assert proc.stdout.readline() == "finished 0\n", proc.stderr.read() if proc.poll() is not None else ""
+    time.sleep(1.0)  # the pool queues the waiting cases once one has ended
+    rc, err, _ = _signal_and_time(proc)
+    assert rc == 143, err
+
+
 @pytest.mark.parametrize("argv,kept", [
     (["study", "validation", "l_panel", "--root", "ROOT"], "finished cases are kept in ROOT/results/validation/l_panel"),
     (["study", "fracture-energy", "ROOT/m.json"], "finished cases are kept in ROOT/fracture_energy"),

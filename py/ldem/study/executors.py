@@ -121,10 +121,13 @@ def _run_in_processes(jobs, todo, args, finished):
     import concurrent.futures as cf
     import multiprocessing
 
-    # spawn, not fork: a forked OpenMP runtime can hang in the child.
+    # spawn, not fork: a forked OpenMP runtime can hang in the child. Each worker gets every case once, as it
+    # starts, and the pool's queue carries only a case's place in that list: pickled cases (a 200 mm beam's is
+    # 61 KB) filled the queue's pipe, and once the workers were terminated the pool's shutdown waited for its
+    # writer forever (Python 3.11 leaves the pipe's read end open).
     with cf.ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context("spawn"),
-                                initializer=_worker_signals) as pool:
-        futures = {pool.submit(_worker_case, t, d): i for i, (t, d) in largest_first(todo, args)}
+                                initializer=_worker_start, initargs=(list(args),)) as pool:
+        futures = {pool.submit(_worker_case, k): todo[k] for k, _ in largest_first(range(len(args)), args)}
         try:
             for fut in cf.as_completed(futures):
                 finished(futures[fut], fut.result())
@@ -150,13 +153,17 @@ def largest_first(todo, args):
     return sorted(zip(todo, args), key=lambda pair: -size(pair))
 
 
+_cases = []  # a worker process's: the (test, folder) of every case to run, from the pool's initializer
 _in_case = False  # a worker process's: whether it runs a case now
 _stopping = False  # a worker process's: whether a signal has stopped its case
 
 
-def _worker_signals() -> None:
-    """A worker hears SIGTERM and SIGINT as `ldem` does (its case stops and
-    leaves its files: ldem.signals) or, between cases, ends at once."""
+def _worker_start(cases) -> None:
+    """A worker keeps the cases and hears SIGTERM and SIGINT as `ldem` does
+    (its case stops and leaves its files: ldem.signals) or, between cases,
+    ends at once."""
+    global _cases
+    _cases = cases
     for s in (signal.SIGTERM, signal.SIGINT):
         signal.signal(s, _worker_signal)
 
@@ -178,10 +185,11 @@ def _worker_signal(signum, frame):
     raise Terminated() if signum == signal.SIGTERM else KeyboardInterrupt()
 
 
-def _worker_case(test, case_dir) -> dict:
-    """run_case in a worker; stopped by a signal, the worker ends (its case
-    has written what it keeps) rather than take the next case."""
+def _worker_case(k: int) -> dict:
+    """run_case of case k in a worker; stopped by a signal, the worker ends
+    (its case has written what it keeps) rather than take the next case."""
     global _in_case, _stopping
+    test, case_dir = _cases[k]
     _in_case, _stopping = True, False  # each case hears its own first signal: no worker is left deaf to them
     try:
         return run_case(test, case_dir)
