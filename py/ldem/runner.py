@@ -21,6 +21,12 @@ STOP_WORDS = {"final_strain": "the final strain", "past_peak": "peak_stop_strain
               "stopped": "an observer's request"}
 
 
+def meant_to_separate(test) -> bool:
+    """Whether test runs to separation (or to U's convergence): stopped before,
+    its fracture energy is not U_num and its stop is worth a word."""
+    return getattr(test, "stop_at", None) in ("separation", "converged")
+
+
 def default_writers(plots: bool = True, checkpoints: bool = False, final_state: bool = False) -> list:
     """The writers of `ldem cube` and `ldem run`: the curve and the summary,
     with plots the pictures and the ParaView files, with checkpoints those,
