@@ -203,7 +203,7 @@ def report_run(result, args, edge: bool = False) -> int:
     """The lines a run prints (ldem cube, ldem run), in the specimen's own words (summary.json's labels: a
     cube's mean strain and normal stress, a beam's deflection/D and F/(bD)); exit 1 on an energy error."""
     from .cube import label_words
-    from .runner import STOP_WORDS, meant_to_separate
+    from .runner import STOP_WORDS, stopped_short
 
     s, test = result.summary, result.test
     (strain, _), (stress, unit) = label_words(s["labels"]["strain"]), label_words(s["labels"]["stress"])
@@ -226,7 +226,7 @@ def report_run(result, args, edge: bool = False) -> int:
               f"{s['U_final_J']:.4g} J{of_min(s['U_final_J'])} (not U_num: it did not separate)")
     elif s["stop_reason"] in STOP_WORDS:
         stop = STOP_WORDS[s["stop_reason"]]
-        aim = meant_to_separate(test)
+        aim = stopped_short(test, s["stop_reason"])
         print(f"stopped at {stop} ({strain} {result.curve['mean_strain'][-1]:.4e})" + " before separation" * aim
               + f": the fracture energy at the end, {s['fracture_energy_J']:.4g} J{of_min(s['fracture_energy_J'])}"
               + ", is not U_num (the energy at separation)" * aim)

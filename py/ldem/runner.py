@@ -21,10 +21,12 @@ STOP_WORDS = {"final_strain": "the final strain", "past_peak": "peak_stop_strain
               "stopped": "an observer's request"}
 
 
-def meant_to_separate(test) -> bool:
-    """Whether test runs to separation (or to U's convergence): stopped before,
-    its fracture energy is not U_num and its stop is worth a word."""
-    return getattr(test, "stop_at", None) in ("separation", "converged")
+def stopped_short(test, stop_reason: str) -> bool:
+    """Whether a run meant to separate (or to converge) stopped before that at
+    a limit of its own (the final strain): its fracture energy is then not
+    U_num. A stop an observer asked for (a study's beam past its peak) is
+    where the case was meant to end."""
+    return stop_reason != "stopped" and getattr(test, "stop_at", None) in ("separation", "converged")
 
 
 def default_writers(plots: bool = True, checkpoints: bool = False, final_state: bool = False) -> list:

@@ -11,6 +11,7 @@ import pytest
 from conftest import FAST, ROOT, colour_share, picture, undamaged_on_white
 from ldem import study
 from ldem.cube import CubeTest
+from ldem.study.cases import Named
 
 TINY = dict(strain_rate=FAST["strain_rate"], final_strain=0.02, threads=1)
 
@@ -117,6 +118,25 @@ def test_a_case_line_says_where_a_run_stopped(tmp_path):
     assert summary["stop_reason"] == "past_peak"
     assert "stopped at peak_stop_strain_ratio x the strain at the peak, " in log[-1], log
     assert "separation" not in log[-1]
+
+
+def test_a_case_stopped_by_its_own_observer_is_not_said_to_stop_before_separation(tmp_path):
+    """A case whose run ends where an observer of its own says (a study's beam
+    past its peak) ended where it was meant to, even if its test would run
+    to separation: its line says the observer stopped it, nothing more."""
+    class TwoRows(Named):
+        def run(self, observers=(), simulation=None, previous_rows=()):
+            rows = []
+            return self.test.run(list(observers) + [lambda row: rows.append(row) or len(rows) < 2],
+                                 simulation, previous_rows)
+
+    [cube] = study.size_effect_tests([0.04], 1, ["uniform"], **TINY)
+    assert cube.stop_at == "separation"
+    log = []
+    [summary] = study.run_cases([TwoRows(cube, "two_rows")], str(tmp_path / "st"), log=log.append)
+    assert summary["stop_reason"] == "stopped"
+    assert "stopped at an observer's request," in log[-1], log
+    assert "separation" not in log[-1], log
 
 
 def test_study_resumes_and_never_recomputes_finished_cases(tmp_path):

@@ -11,7 +11,7 @@ from typing import Callable, List, Optional, Sequence
 from .. import io
 from ..cube import label_words
 from ..progress import CaseProgress
-from ..runner import STOP_WORDS, meant_to_separate
+from ..runner import STOP_WORDS, stopped_short
 from ..signals import Terminated
 from .cases import case_dir, case_name, checkpoint_step, load_summary, run_case, unfinished_reason
 
@@ -101,7 +101,7 @@ def _run_cases(tests, out, jobs, scheduler, progress, log) -> List[dict]:
             + (f"U_num/U_min {summary['U_ratio']:.3f}" if summary.get("U_ratio") is not None  # None: no U_min
                else f"U_num {summary['U_num_J']:.4g} J" if summary.get("separated")
                else f"stopped at {STOP_WORDS.get(summary.get('stop_reason'), summary.get('stop_reason'))}"
-               + " before separation" * meant_to_separate(tests[i]))
+               + " before separation" * stopped_short(tests[i], summary.get("stop_reason")))
             + (", ENERGY ERROR" if summary.get("energy_error") else "") + f", {summary['wall_s']:.1f} s")
 
     try:
