@@ -200,7 +200,7 @@ def add_arguments(b) -> None:
 
     command("calibrate", lambda a: calibrate_eps_p(log), "eps_p such that the tension prisms' mean strength "
             "is f_t (seeds 1-3): the value predict and uniform take", out="")
-    p = command("predict", predict, "the beams with random G_f, six specimens each (OUT/cases/), then "
+    p = command("predict", predict, "the beams with random G_f, --seeds specimens each (OUT/cases/), then "
                                     "predictions.csv")
     u = command("uniform", uniform, "the beams with a uniform G_f (CV 0, one specimen each: OUT/cases_cv0/)")
     for q in (p, u):

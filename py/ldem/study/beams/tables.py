@@ -89,10 +89,10 @@ def write_size_effect(folder: str) -> tuple:
     rows = beam_cases(folder)
     if not rows:
         return None
-    lines, fits = size_effect_table(rows, "Random G_f (CV 1), six specimens per beam")
+    lines, fits = size_effect_table(rows, "Random G_f (CV 1)")
     uniform, uniform_fits = beam_cases(folder, "cases_cv0"), {}
     if uniform:
-        more, uniform_fits = size_effect_table(uniform, "Uniform G_f (CV 0), one specimen per beam")
+        more, uniform_fits = size_effect_table(uniform, "Uniform G_f (CV 0)")
         lines += more
     io.write_text(os.path.join(folder, "size_effect.md"), "# Size effect of the beams\n\n" + "\n".join(lines))
     io.write_table(os.path.join(folder, "size_effect.csv"), [dict(r, Gf_cv=1.0) for r in rows] +
