@@ -33,6 +33,7 @@ def size_effect_figure(folder, rows, fits, uniform, uniform_fits) -> None:
     """size_effect.png: sigma_N of every case against D, Bažant's law fitted."""
     from ... import plots
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
 
     fig, ax = plt.subplots()
     for k, notch in enumerate(sorted({r["notch"] for r in rows})):
@@ -48,7 +49,10 @@ def size_effect_figure(folder, rows, fits, uniform, uniform_fits) -> None:
             if fit:
                 ax.plot(d, fit[0] * FT / 1e6 / np.sqrt(1 + d / (fit[2] * 1e3)), style, color=f"C{k}", lw=1)
     ax.set(xscale="log", yscale="log", xlabel="D [mm]", ylabel="sigma_N = 1.5 F S / (b D^2) [MPa]",
-           title="nominal strength against depth (lines: Bažant's law; dashed: uniform G_f)")
+           title="nominal strength against depth (lines: Bažant's law" + ("; dashed: uniform G_f)" if uniform else ")"))
+    for axis in (ax.xaxis, ax.yaxis):  # plain numbers: a decade or less spans these axes, 2 x 10^0 reads badly
+        axis.set_major_formatter(matplotlib.ticker.ScalarFormatter())
+        axis.set_minor_formatter(matplotlib.ticker.FormatStrFormatter("%g"))
     ax.legend()
     plots.save(fig, os.path.join(folder, "size_effect.png"))
 
