@@ -11,7 +11,7 @@ limit=${1:-300000} modules=${2:-64}
 # The build tree's ldem-bench if there is one (an installed one may be older), else the installed one.
 bench="$(dirname "$0")/../build/pkg/ldem-bench"
 [ -x "$bench" ] || bench=$(command -v ldem-bench)
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 # One malloc arena: glibc reserves 64 MB of address space for each thread's
 # arena, which would count against the limit without being used.
 export MALLOC_ARENA_MAX=1

@@ -8,8 +8,11 @@ set -euo pipefail
 out=$1 ranks=$2
 shift 2
 here=$(cd "$(dirname "$0")" && pwd)
-# mpirun refuses root unless told; oversubscribed ranks yield the core while they wait.
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_mpi_yield_when_idle=1
+# mpirun refuses root unless told. Nothing else is set: ranks made to yield the
+# core while they wait (mpi_yield_when_idle=1) step hundreds of times slower
+# beside other work (results/mpi/busy/); with more ranks than cores OpenMPI
+# yields by itself.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 rm -rf "$out"
 dirs=()
 for p in $ranks; do

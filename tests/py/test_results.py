@@ -73,7 +73,7 @@ def test_the_checks_see_a_binary_and_a_dangling_pvd(tmp_path):
 # One current result per study (results/README.md): results/NAME/ for each
 # registered study that has one, its README opening with the command, the
 # commit(s) and the wall time; the side results; the archive of earlier runs.
-SIDE = {"dynamics", "yade-native"}  # no study's output (results/README.md, "Side results")
+SIDE = {"dynamics", "mpi", "yade-native"}  # no study's output (results/README.md, "Side results")
 VARIANTS = {"size-effect": {"seed-settings"}}  # the one named variant a study's folder may hold
 ARCHIVE = os.path.join(ROOT, "results", "archive")
 
